@@ -1,0 +1,58 @@
+#include "Info.H"
+
+#include <iostream>
+#include <ostream>
+#include <streambuf>
+
+namespace
+{
+
+// A stream that swallows everything: Info on non-master ranks.
+class nullBuffer : public std::streambuf
+{
+protected:
+    int overflow(int c) override { return c; }
+};
+
+nullBuffer theNullBuffer;
+std::ostream theNullStream(&theNullBuffer);
+
+// Process-wide log settings: written once at start-up.
+int logRank = 0;
+bool logParallel = false;
+bool infoSilent = false;
+
+} // End anonymous namespace
+
+
+void pmsh::setLogRank(int rank, bool parallel)
+{
+    logRank = rank;
+    logParallel = parallel;
+}
+
+
+void pmsh::setInfoSilent(bool silent)
+{
+    infoSilent = silent;
+}
+
+
+std::ostream& pmsh::Info()
+{
+    if (logRank != 0 || infoSilent)
+    {
+        return theNullStream;
+    }
+    return std::cout;
+}
+
+
+std::ostream& pmsh::Pout()
+{
+    if (logParallel)
+    {
+        std::cout << '[' << logRank << "] ";
+    }
+    return std::cout;
+}

@@ -1,0 +1,28 @@
+#include "error.H"
+
+pmsh::FatalError::FatalError(const std::string& message, const std::string& where)
+:
+    std::runtime_error(message),
+    message_(message),
+    where_(where)
+{}
+
+
+std::string pmsh::FatalError::report() const
+{
+    std::ostringstream os;
+    os  << "\n\n--> FOAM FATAL ERROR: \n";
+
+    // Indent every line of the message as OpenFOAM does
+    std::istringstream is(message_);
+    for (std::string line; std::getline(is, line); )
+    {
+        os  << "    " << line << '\n';
+    }
+    if (!where_.empty())
+    {
+        os  << "\n    From " << where_ << '\n';
+    }
+    os  << "\nFOAM exiting\n";
+    return os.str();
+}
