@@ -3,6 +3,7 @@
 #include "failTogether.H"
 
 #include <algorithm>
+#include <numeric>
 #include <tuple>
 
 pmsh::CoarseMesh pmsh::generateCoarseMesh
@@ -131,4 +132,28 @@ std::vector<pmsh::faceNeighbours> pmsh::coarseFaceNeighbours(const CoarseMesh& c
         }
     }
     return neighbours;
+}
+
+
+pmsh::coarsePointCells::coarsePointCells(const CoarseMesh& coarse)
+:
+    offsets_(coarse.nPoints() + 1, 0)
+{
+    for (const tetCell& t : coarse.tets)
+    {
+        for (label p : t)
+        {
+            ++offsets_[p + 1];
+        }
+    }
+    std::partial_sum(offsets_.begin(), offsets_.end(), offsets_.begin());
+    cells_.resize(offsets_.back());
+    std::vector<label> fill(offsets_.begin(), offsets_.end() - 1);
+    for (label c = 0; c < coarse.nCells(); ++c)
+    {
+        for (label p : coarse.tets[c])
+        {
+            cells_[fill[p]++] = c;
+        }
+    }
 }

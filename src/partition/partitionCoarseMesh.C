@@ -15,42 +15,6 @@ namespace
 
 using namespace pmsh;
 
-// Cells around each coarse vertex, in compressed rows
-struct vertexCells
-{
-    std::vector<label> offsets;
-    std::vector<label> cells;
-
-    explicit vertexCells(const CoarseMesh& coarse)
-    :
-        offsets(coarse.nPoints() + 1, 0)
-    {
-        for (const tetCell& t : coarse.tets)
-        {
-            for (label p : t)
-            {
-                ++offsets[p + 1];
-            }
-        }
-        std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-        cells.resize(offsets.back());
-        std::vector<label> fill(offsets.begin(), offsets.end() - 1);
-        for (label c = 0; c < coarse.nCells(); ++c)
-        {
-            for (label p : coarse.tets[c])
-            {
-                cells[fill[p]++] = c;
-            }
-        }
-    }
-
-    std::vector<label> around(label p) const
-    {
-        return {cells.begin() + offsets[p], cells.begin() + offsets[p + 1]};
-    }
-};
-
-
 bool tetHas(const tetCell& t, label p)
 {
     return std::find(t.begin(), t.end(), p) != t.end();
@@ -194,7 +158,7 @@ label repairPass
 (
     const CoarseMesh& coarse,
     const std::vector<faceNeighbours>& neighbours,
-    const vertexCells& vc,
+    const coarsePointCells& vc,
     std::vector<label>& cellPart,
     bool doMove,
     label& moved
@@ -385,7 +349,7 @@ pmsh::label pmsh::repairPartition
 )
 {
     const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
-    const vertexCells vc(coarse);
+    const coarsePointCells vc(coarse);
 
     label moved = 0;
     const int maxPasses = 50;
@@ -422,7 +386,7 @@ pmsh::label pmsh::countNonManifoldParts
     const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
     std::vector<label> parts = cellPart;
     label moved = 0;
-    return repairPass(coarse, neighbours, vertexCells(coarse), parts, false, moved);
+    return repairPass(coarse, neighbours, coarsePointCells(coarse), parts, false, moved);
 }
 
 

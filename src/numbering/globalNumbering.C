@@ -1,0 +1,182 @@
+#include "globalNumbering.H"
+#include "coarseMesh.H"
+#include "error.H"
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace
+{
+
+// What an owner tells a holder: this id has this global number
+struct numberedId
+{
+    pmsh::barycentricId id;
+    pmsh::globalLabel number;
+};
+
+} // End anonymous namespace
+
+
+std::vector<int> pmsh::holderRanks
+(
+    const barycentricId& id,
+    const coarsePointCells& pointCells,
+    const std::vector<label>& cellPart
+)
+{
+    if (cellPart.empty())
+    {
+        return {0};
+    }
+
+    // Cells holding every coarse vertex of the id (1-based; 0 = padding)
+    std::vector<label> cells;
+    bool first = true;
+    for (int n = 0; n < 3; ++n)
+    {
+        if (id.vertex[n] == 0)
+        {
+            continue;
+        }
+        const std::vector<label> around = pointCells.around(id.vertex[n] - 1);
+        if (first)
+        {
+            cells = around;
+            first = false;
+        }
+        else
+        {
+            std::vector<label> common;
+            std::set_intersection
+            (
+                cells.begin(), cells.end(), around.begin(), around.end(),
+                std::back_inserter(common)
+            );
+            cells.swap(common);
+        }
+    }
+
+    std::vector<int> holders;
+    for (label c : cells)
+    {
+        holders.push_back(cellPart[c]);
+    }
+    std::sort(holders.begin(), holders.end());
+    holders.erase(std::unique(holders.begin(), holders.end()), holders.end());
+    return holders;
+}
+
+
+pmsh::globalPointNumbering::globalPointNumbering
+(
+    const Communicator& comm,
+    const CoarseMesh& coarse,
+    const std::vector<label>& cellPart,
+    const FineSurface& surface,
+    label nLocalPoints,
+    globalLabel baseOffset
+)
+:
+    globalIds_(nLocalPoints, -1)
+{
+    const int me = comm.rank();
+    const label nSurface = label(surface.points.size());
+    const coarsePointCells pointCells(coarse);
+
+    // Owner of each surface point; the interior points are all ours
+    std::vector<int> owner(nSurface, me);
+    std::vector<std::vector<int>> otherHolders(nSurface);
+    for (label p = 0; p < nSurface; ++p)
+    {
+        if (comm.size() == 1)
+        {
+            break;      // one rank holds everything
+        }
+        const barycentricId& id = surface.ids[p];
+        std::vector<int> holders = holderRanks(id, pointCells, cellPart);
+        if (std::find(holders.begin(), holders.end(), me) == holders.end())
+        {
+            throw FatalError
+            (
+                msg() << "Surface point " << id << " of rank " << me
+                    << " is not held by that rank",
+                "globalPointNumbering"
+            );
+        }
+        if (holders.size() < 2)
+        {
+            continue;
+        }
+        ++nShared_;
+        owner[p] = ownerRank(id, holders);
+        holders.erase(std::find(holders.begin(), holders.end(), me));
+        otherHolders[p] = std::move(holders);
+    }
+
+    nOwned_ = nLocalPoints - nSurface;
+    for (label p = 0; p < nSurface; ++p)
+    {
+        nOwned_ += (owner[p] == me);
+    }
+    globalLabel next = baseOffset + comm.exclusiveScan(nOwned_);
+    nGlobal_ = comm.sum(std::int64_t(nOwned_));
+
+    // Number what we own, in local order, and tell the other holders
+    std::vector<std::vector<numberedId>> send(comm.size());
+    for (label p = 0; p < nLocalPoints; ++p)
+    {
+        if (p < nSurface && owner[p] != me)
+        {
+            continue;
+        }
+        globalIds_[p] = next++;
+        if (p < nSurface)
+        {
+            for (int r : otherHolders[p])
+            {
+                send[r].push_back({surface.ids[p], globalIds_[p]});
+            }
+        }
+    }
+
+    const std::vector<std::vector<numberedId>> received = comm.exchange(send);
+
+    std::unordered_map<barycentricId, label, barycentricIdHash> awaiting;
+    for (label p = 0; p < nSurface; ++p)
+    {
+        if (owner[p] != me)
+        {
+            awaiting.emplace(surface.ids[p], p);
+        }
+    }
+    label nAssigned = 0;
+    for (int r = 0; r < comm.size(); ++r)
+    {
+        for (const numberedId& n : received[r])
+        {
+            auto it = awaiting.find(n.id);
+            if (it == awaiting.end() || globalIds_[it->second] >= 0)
+            {
+                throw FatalError
+                (
+                    msg() << "Rank " << r << " numbered point " << n.id
+                        << " for rank " << me << ", which does not await it",
+                    "globalPointNumbering"
+                );
+            }
+            globalIds_[it->second] = n.number;
+            ++nAssigned;
+        }
+    }
+    if (nAssigned != label(awaiting.size()))
+    {
+        throw FatalError
+        (
+            msg() << "Rank " << me << " received numbers for " << nAssigned
+                << " of its " << awaiting.size() << " shared points owned by"
+                << " other ranks",
+            "globalPointNumbering"
+        );
+    }
+}
