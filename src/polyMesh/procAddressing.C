@@ -128,3 +128,18 @@ pmsh::procAddressing pmsh::buildProcAddressing
     }
     return addr;
 }
+
+
+void pmsh::writeProcAddressing
+(
+    const std::string& polyMeshDir,
+    const procAddressing& addressing,
+    const foamFileFormat& format,
+    const std::string& location
+)
+{
+    writeLabelListFile(polyMeshDir + "/pointProcAddressing", addressing.point, format, location);
+    writeLabelListFile(polyMeshDir + "/faceProcAddressing", addressing.face, format, location);
+    writeLabelListFile(polyMeshDir + "/cellProcAddressing", addressing.cell, format, location);
+    writeLabelListFile(polyMeshDir + "/boundaryProcAddressing", addressing.boundary, format, location);
+}

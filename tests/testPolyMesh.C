@@ -1,0 +1,1005 @@
+/*---------------------------------------------------------------------------*\
+  pmshFoam tests: tetsToPolyMesh on small hand-built meshes.
+
+  The expected boundary of each test mesh is computed here independently
+  (a std::map of faces, orientation from the opposite vertex's position),
+  not with the library's tet face table, and every result is checked
+  against OpenFOAM's rules: face blocks, owner < neighbour, upper-triangular
+  order, normals from owner to neighbour and out of the domain, patch
+  layout, and processor faces that are reverseFace of each other.
+\*---------------------------------------------------------------------------*/
+
+#include "tetsToPolyMesh.H"
+#include "error.H"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <numeric>
+#include <set>
+
+using namespace pmsh;
+
+namespace
+{
+
+struct tetMesh
+{
+    std::vector<point> points;
+    std::vector<tetCell> tets;
+};
+
+
+//- Swap two points of every negative tet so all are positive.
+void orientPositive(tetMesh& m)
+{
+    for (tetCell& t : m.tets)
+    {
+        const auto& p = m.points;
+        if (tetVolume6(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) < 0)
+        {
+            std::swap(t[2], t[3]);
+        }
+    }
+}
+
+
+tetMesh singleTet()
+{
+    tetMesh m;
+    m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    m.tets = {{0, 1, 2, 3}};
+    return m;
+}
+
+
+tetMesh twoTets()
+{
+    tetMesh m;
+    m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+    // Listed so that the shared face (1 2 3) has the higher tet first
+    m.tets = {{4, 1, 2, 3}, {0, 1, 2, 3}};
+    orientPositive(m);
+    return m;
+}
+
+
+//- The unit cube as 5 tets: four corner tets and a central one.
+tetMesh fiveTetCube()
+{
+    tetMesh m;
+    for (int c = 0; c < 8; ++c)
+    {
+        m.points.push_back({double(c & 1), double((c >> 1) & 1), double(c >> 2)});
+    }
+    m.tets = {{0, 1, 2, 4}, {3, 1, 2, 7}, {5, 1, 4, 7}, {6, 2, 4, 7}, {1, 2, 4, 7}};
+    orientPositive(m);
+    return m;
+}
+
+
+//- nx*ny*nz boxes, each split into 6 tets around its main diagonal (Kuhn),
+//  which is conforming between boxes. Spacing is uneven on purpose.
+tetMesh kuhnGrid(int nx, int ny, int nz)
+{
+    tetMesh m;
+    auto coord = [](int i) { return i + 0.1*i*i; };
+    auto id = [&](int i, int j, int k) { return label(i + (nx + 1)*(j + (ny + 1)*k)); };
+    for (int k = 0; k <= nz; ++k)
+    {
+        for (int j = 0; j <= ny; ++j)
+        {
+            for (int i = 0; i <= nx; ++i)
+            {
+                m.points.push_back({coord(i), 0.5*coord(j), 2*coord(k)});
+            }
+        }
+    }
+    std::array<int, 3> perm = {0, 1, 2};
+    for (int k = 0; k < nz; ++k)
+    {
+        for (int j = 0; j < ny; ++j)
+        {
+            for (int i = 0; i < nx; ++i)
+            {
+                std::sort(perm.begin(), perm.end());
+                do
+                {
+                    std::array<int, 3> c = {i, j, k};
+                    tetCell t;
+                    t[0] = id(c[0], c[1], c[2]);
+                    for (int s = 0; s < 3; ++s)
+                    {
+                        ++c[perm[s]];
+                        t[s + 1] = id(c[0], c[1], c[2]);
+                    }
+                    m.tets.push_back(t);
+                } while (std::next_permutation(perm.begin(), perm.end()));
+            }
+        }
+    }
+    orientPositive(m);
+    return m;
+}
+
+
+point centroid(const std::vector<point>& p, const std::vector<label>& ids)
+{
+    point c = {0, 0, 0};
+    for (label i : ids)
+    {
+        c = c + p[i];
+    }
+    return (1.0/ids.size())*c;
+}
+
+
+point cellCentre(const std::vector<point>& p, const tetCell& t)
+{
+    return centroid(p, {t[0], t[1], t[2], t[3]});
+}
+
+
+vector faceNormal(const std::vector<point>& p, const triFace& f)
+{
+    return cross(p[f[1]] - p[f[0]], p[f[2]] - p[f[0]]);
+}
+
+
+//- Physical patches used with the box meshes: the six sides, and an empty
+//  patch in the middle that no triangle uses.
+std::vector<polyPatchInfo> boxPatches()
+{
+    std::vector<polyPatchInfo> patches(7);
+    const char* names[] = {"xMin", "xMax", "yMin", "nothing", "yMax", "zMin", "zMax"};
+    for (int i = 0; i < 7; ++i)
+    {
+        patches[i].name = names[i];
+        patches[i].type = i < 2 ? "patch" : "wall";
+    }
+    return patches;
+}
+
+
+//- Region of a boundary face of a box from its centroid (see boxPatches).
+//  Faces on no side of the bounding box (slanted faces) go to zMax.
+label boxRegion(const point& c, const point& lo, const point& hi)
+{
+    const double eps = 1e-9;
+    if (std::abs(c[0] - lo[0]) < eps) return 0;
+    if (std::abs(c[0] - hi[0]) < eps) return 1;
+    if (std::abs(c[1] - lo[1]) < eps) return 2;
+    if (std::abs(c[1] - hi[1]) < eps) return 4;
+    if (std::abs(c[2] - lo[2]) < eps) return 5;
+    // zMax, and any slanted face (of the single tets)
+    return 6;
+}
+
+
+//- One of the even permutations of t (orientation kept), chosen by i, so
+//  that the first point of a tet is not always its smallest (the Kuhn
+//  tets happen to list their points in increasing order).
+tetCell evenPermutation(const tetCell& t, label i)
+{
+    switch (i % 4)
+    {
+        case 0: return t;
+        case 1: return {t[1], t[2], t[0], t[3]};
+        case 2: return {t[1], t[0], t[3], t[2]};
+        default: return {t[3], t[2], t[1], t[0]};
+    }
+}
+
+
+//- The input of one rank, built independently of the library.
+struct rankInput
+{
+    std::vector<point> points;
+    std::vector<tetCell> tets;
+    std::vector<triFace> tris;
+    std::vector<label> regions;
+    std::vector<globalLabel> globalIds;     //!< empty in serial
+    std::vector<label> globalCell;          //!< local tet -> global tet
+};
+
+
+//- Rank `rank`'s part of m (tetRank empty: serial, all tets). Local points
+//  are numbered in a scrambled order so that local and global orders
+//  differ; boundary triangles are oriented outward geometrically.
+rankInput makeRankInput
+(
+    const tetMesh& m,
+    const std::vector<int>& tetRank,
+    int rank
+)
+{
+    const bool serial = tetRank.empty();
+    auto rankOf = [&](label t) { return serial ? 0 : tetRank[t]; };
+
+    point lo = m.points[0], hi = m.points[0];
+    for (const point& p : m.points)
+    {
+        for (int d = 0; d < 3; ++d)
+        {
+            lo[d] = std::min(lo[d], p[d]);
+            hi[d] = std::max(hi[d], p[d]);
+        }
+    }
+
+    rankInput in;
+    std::map<label, label> localOf;
+    for (label t = 0; t < label(m.tets.size()); ++t)
+    {
+        if (rankOf(t) == rank)
+        {
+            in.globalCell.push_back(t);
+            for (label v : m.tets[t])
+            {
+                localOf[v] = 0;
+            }
+        }
+    }
+    // Scrambled but deterministic local point order
+    std::vector<label> globalPts;
+    for (const auto& kv : localOf)
+    {
+        globalPts.push_back(kv.first);
+    }
+    if (!serial)
+    {
+        std::sort
+        (
+            globalPts.begin(), globalPts.end(),
+            [rank](label a, label b)
+            {
+                const unsigned ha = unsigned(a*2654435761u + rank);
+                const unsigned hb = unsigned(b*2654435761u + rank);
+                return ha % 97 != hb % 97 ? ha % 97 < hb % 97 : a < b;
+            }
+        );
+    }
+    for (label i = 0; i < label(globalPts.size()); ++i)
+    {
+        localOf[globalPts[i]] = i;
+        in.points.push_back(m.points[globalPts[i]]);
+        if (!serial)
+        {
+            in.globalIds.push_back(globalPts[i]);
+        }
+    }
+    for (label t : in.globalCell)
+    {
+        tetCell c;
+        for (int k = 0; k < 4; ++k)
+        {
+            c[k] = localOf[m.tets[t][k]];
+        }
+        in.tets.push_back(evenPermutation(c, t + rank));
+    }
+
+    // Faces of the whole mesh: sorted global triple -> (tet, opposite vertex)
+    std::map<std::array<label, 3>, std::vector<std::pair<label, label>>> faces;
+    for (label t = 0; t < label(m.tets.size()); ++t)
+    {
+        for (int skip = 0; skip < 4; ++skip)
+        {
+            std::array<label, 3> key;
+            int n = 0;
+            for (int k = 0; k < 4; ++k)
+            {
+                if (k != skip)
+                {
+                    key[n++] = m.tets[t][k];
+                }
+            }
+            std::sort(key.begin(), key.end());
+            faces[key].push_back({t, m.tets[t][skip]});
+        }
+    }
+
+    for (const auto& kv : faces)
+    {
+        const auto& key = kv.first;
+        const auto& users = kv.second;
+        int mine = -1;
+        for (int u = 0; u < int(users.size()); ++u)
+        {
+            if (rankOf(users[u].first) == rank)
+            {
+                mine = u;
+            }
+        }
+        if (mine < 0)
+        {
+            continue;
+        }
+        label region;
+        if (users.size() == 1)
+        {
+            region = boxRegion(centroid(m.points, {key[0], key[1], key[2]}), lo, hi);
+        }
+        else
+        {
+            const int other = rankOf(users[1 - mine].first);
+            if (other == rank)
+            {
+                continue;
+            }
+            region = interfaceRegion(other);
+        }
+        // Outward: the normal points away from the opposite vertex
+        triFace f = {key[0], key[1], key[2]};
+        const point& w = m.points[users[mine].second];
+        if (dot(faceNormal(m.points, f), w - m.points[f[0]]) > 0)
+        {
+            std::swap(f[1], f[2]);
+        }
+        in.tris.push_back({localOf[f[0]], localOf[f[1]], localOf[f[2]]});
+        in.regions.push_back(region);
+    }
+    return in;
+}
+
+
+PolyMesh build
+(
+    const rankInput& in,
+    const std::vector<polyPatchInfo>& patches,
+    label myProcNo = -1,
+    tetsToPolyMeshMaps* maps = nullptr
+)
+{
+    std::vector<point> pts = in.points;
+    return tetsToPolyMesh
+    (
+        std::move(pts), in.tets, in.tris, in.regions, patches, myProcNo,
+        in.globalIds, maps
+    );
+}
+
+
+//- Every OpenFOAM ordering and orientation rule, checked on a PolyMesh.
+void expectValidPolyMesh(const PolyMesh& mesh, const std::vector<tetCell>& tets)
+{
+    const auto& p = mesh.points;
+    const label nInt = mesh.nInternalFaces();
+
+    ASSERT_EQ(mesh.nCells, label(tets.size()));
+    ASSERT_EQ(mesh.owner.size(), mesh.faces.size());
+
+    // Each tet has 4 faces: 4*nCells = 2*nInternal + nBoundary
+    EXPECT_EQ(4*mesh.nCells, 2*nInt + (mesh.nFaces() - nInt));
+
+    std::vector<point> C(tets.size());
+    for (std::size_t c = 0; c < tets.size(); ++c)
+    {
+        C[c] = cellCentre(p, tets[c]);
+    }
+
+    std::vector<vector> sumS(tets.size(), {0, 0, 0});
+    std::vector<int> nCellFaces(tets.size(), 0);
+
+    for (label f = 0; f < mesh.nFaces(); ++f)
+    {
+        const triFace& face = mesh.faces[f];
+        const label own = mesh.owner[f];
+        ASSERT_GE(own, 0);
+        ASSERT_LT(own, mesh.nCells);
+
+        const vector S = faceNormal(p, face);
+        const point fc = centroid(p, {face[0], face[1], face[2]});
+
+        // The face's points are points of its owner tet
+        for (label v : face)
+        {
+            EXPECT_NE
+            (
+                std::find(tets[own].begin(), tets[own].end(), v),
+                tets[own].end()
+            ) << "face " << f << " has a point not on its owner";
+        }
+
+        sumS[own] = sumS[own] + S;
+        ++nCellFaces[own];
+
+        if (f < nInt)
+        {
+            const label nei = mesh.neighbour[f];
+            EXPECT_LT(own, nei) << "face " << f;
+            EXPECT_GT(dot(S, C[nei] - C[own]), 0)
+                << "internal face " << f << " does not point owner->neighbour";
+            sumS[nei] = sumS[nei] - S;
+            ++nCellFaces[nei];
+            if (f > 0)
+            {
+                const auto prev = std::make_pair(mesh.owner[f - 1], mesh.neighbour[f - 1]);
+                EXPECT_LT(prev, std::make_pair(own, nei))
+                    << "internal faces not in strict (owner, neighbour) order at " << f;
+            }
+        }
+        else
+        {
+            EXPECT_GT(dot(S, fc - C[own]), 0)
+                << "boundary face " << f << " does not point out of the domain";
+        }
+    }
+
+    for (std::size_t c = 0; c < tets.size(); ++c)
+    {
+        EXPECT_EQ(nCellFaces[c], 4) << "cell " << c;
+        EXPECT_LT(std::sqrt(magSqr(sumS[c])), 1e-12) << "cell " << c << " not closed";
+    }
+
+    // Patches: contiguous from nInternalFaces, in order, covering all faces
+    label start = nInt;
+    for (const polyPatchInfo& pp : mesh.patches)
+    {
+        EXPECT_EQ(pp.start, start) << pp.name;
+        EXPECT_GE(pp.size, 0) << pp.name;
+        start += pp.size;
+    }
+    EXPECT_EQ(start, mesh.nFaces());
+}
+
+
+//- Patch of each face's region, checked by the face centroid.
+void expectBoxPatchesByGeometry(const PolyMesh& mesh, std::size_t nPhysical)
+{
+    point lo = mesh.points[0], hi = mesh.points[0];
+    for (const point& p : mesh.points)
+    {
+        for (int d = 0; d < 3; ++d)
+        {
+            lo[d] = std::min(lo[d], p[d]);
+            hi[d] = std::max(hi[d], p[d]);
+        }
+    }
+    for (std::size_t pi = 0; pi < nPhysical; ++pi)
+    {
+        const polyPatchInfo& pp = mesh.patches[pi];
+        for (label f = pp.start; f < pp.start + pp.size; ++f)
+        {
+            const triFace& face = mesh.faces[f];
+            const point c = centroid(mesh.points, {face[0], face[1], face[2]});
+            EXPECT_EQ(boxRegion(c, lo, hi), label(pi)) << "face " << f << " in " << pp.name;
+        }
+    }
+}
+
+
+//- Split m along x into nRanks slabs by tet centroid.
+std::vector<int> slabRanks(const tetMesh& m, int nRanks)
+{
+    double lo = 1e300, hi = -1e300;
+    for (const point& p : m.points)
+    {
+        lo = std::min(lo, p[0]);
+        hi = std::max(hi, p[0]);
+    }
+    std::vector<int> rank;
+    for (const tetCell& t : m.tets)
+    {
+        const double x = cellCentre(m.points, t)[0];
+        rank.push_back(std::min(nRanks - 1, int(nRanks*(x - lo)/(hi - lo))));
+    }
+    return rank;
+}
+
+
+std::string errorOf(const std::function<void()>& f)
+{
+    try
+    {
+        f();
+    }
+    catch (const FatalError& e)
+    {
+        return e.message();
+    }
+    return "";
+}
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * * * Tests * * * * * * * * * * * * * * * * //
+
+TEST(tetsToPolyMesh, interfaceRegionEncodingRoundTrips)
+{
+    for (label rank : {0, 1, 7, 123456})
+    {
+        const label r = interfaceRegion(rank);
+        EXPECT_TRUE(isInterfaceRegion(r));
+        EXPECT_EQ(interfaceNeighbour(r), rank);
+    }
+    EXPECT_EQ(interfaceRegion(0), -1);
+    EXPECT_FALSE(isInterfaceRegion(0));
+    EXPECT_FALSE(isInterfaceRegion(5));
+}
+
+
+TEST(tetsToPolyMesh, tetFaceTableIsOutwardAndOppositeVertex3MinusF)
+{
+    const tetMesh m = kuhnGrid(1, 1, 1);
+    for (const tetCell& t : m.tets)
+    {
+        const point C = cellCentre(m.points, t);
+        for (int f = 0; f < 4; ++f)
+        {
+            const triFace face = tetFace(t, f);
+            const point fc = centroid(m.points, {face[0], face[1], face[2]});
+            EXPECT_GT(dot(faceNormal(m.points, face), fc - C), 0) << "face " << f;
+            for (label v : face)
+            {
+                EXPECT_NE(v, t[3 - f]) << "face " << f << " contains vertex " << 3 - f;
+            }
+        }
+    }
+}
+
+
+TEST(tetsToPolyMesh, singleTetHasFourOutwardBoundaryFaces)
+{
+    const tetMesh m = singleTet();
+    const rankInput in = makeRankInput(m, {}, 0);
+    const PolyMesh mesh = build(in, boxPatches());
+
+    EXPECT_EQ(mesh.nCells, 1);
+    EXPECT_EQ(mesh.nFaces(), 4);
+    EXPECT_EQ(mesh.nInternalFaces(), 0);
+    expectValidPolyMesh(mesh, in.tets);
+    expectBoxPatchesByGeometry(mesh, 7);
+}
+
+
+TEST(tetsToPolyMesh, twoTetsShareOneFaceOrientedFromLowerToHigherCell)
+{
+    const tetMesh m = twoTets();
+    rankInput in = makeRankInput(m, {}, 0);
+    std::vector<polyPatchInfo> patches(1);
+    patches[0].name = "walls";
+    for (label& r : in.regions)
+    {
+        r = 0;
+    }
+    const PolyMesh mesh = build(in, patches);
+
+    ASSERT_EQ(mesh.nInternalFaces(), 1);
+    EXPECT_EQ(mesh.nFaces(), 7);
+    EXPECT_EQ(mesh.owner[0], 0);
+    EXPECT_EQ(mesh.neighbour[0], 1);
+    expectValidPolyMesh(mesh, in.tets);
+    ASSERT_EQ(mesh.patches.size(), 1u);
+    EXPECT_EQ(mesh.patches[0].size, 6);
+}
+
+
+TEST(tetsToPolyMesh, fiveTetCubeIsValid)
+{
+    const tetMesh m = fiveTetCube();
+    const rankInput in = makeRankInput(m, {}, 0);
+    const PolyMesh mesh = build(in, boxPatches());
+
+    EXPECT_EQ(mesh.nInternalFaces(), 4);
+    EXPECT_EQ(mesh.nFaces(), 16);
+    expectValidPolyMesh(mesh, in.tets);
+    expectBoxPatchesByGeometry(mesh, 7);
+}
+
+
+TEST(tetsToPolyMesh, sixTetCubeHasTwoFacesPerSideAndEmptyPatchKept)
+{
+    const tetMesh m = kuhnGrid(1, 1, 1);
+    const rankInput in = makeRankInput(m, {}, 0);
+    const PolyMesh mesh = build(in, boxPatches());
+
+    EXPECT_EQ(mesh.nCells, 6);
+    EXPECT_EQ(mesh.nInternalFaces(), 6);
+    EXPECT_EQ(mesh.nFaces(), 18);
+    expectValidPolyMesh(mesh, in.tets);
+    expectBoxPatchesByGeometry(mesh, 7);
+
+    ASSERT_EQ(mesh.patches.size(), 7u);
+    for (std::size_t i = 0; i < 7; ++i)
+    {
+        EXPECT_EQ(mesh.patches[i].name, boxPatches()[i].name);
+        EXPECT_EQ(mesh.patches[i].type, boxPatches()[i].type);
+        EXPECT_EQ(mesh.patches[i].size, i == 3 ? 0 : 2) << mesh.patches[i].name;
+    }
+    // The empty patch starts where the next one starts
+    EXPECT_EQ(mesh.patches[3].start, mesh.patches[4].start);
+}
+
+
+TEST(tetsToPolyMesh, gridIsUpperTriangularAndOriented)
+{
+    const tetMesh m = kuhnGrid(3, 2, 2);
+    const rankInput in = makeRankInput(m, {}, 0);
+    const PolyMesh mesh = build(in, boxPatches());
+
+    expectValidPolyMesh(mesh, in.tets);
+    expectBoxPatchesByGeometry(mesh, 7);
+    EXPECT_TRUE(mesh.patches.size() == 7u);
+}
+
+
+TEST(tetsToPolyMesh, physicalPatchFacesAreOrderedByOwner)
+{
+    const tetMesh m = kuhnGrid(2, 2, 2);
+    const rankInput in = makeRankInput(m, {}, 0);
+    const PolyMesh mesh = build(in, boxPatches());
+
+    for (const polyPatchInfo& pp : mesh.patches)
+    {
+        for (label f = pp.start + 1; f < pp.start + pp.size; ++f)
+        {
+            EXPECT_LE(mesh.owner[f - 1], mesh.owner[f]) << pp.name;
+        }
+    }
+}
+
+
+TEST(tetsToPolyMesh, resultDoesNotDependOnBoundaryTriangleOrder)
+{
+    const tetMesh m = kuhnGrid(2, 2, 1);
+    const std::vector<int> ranks = slabRanks(m, 2);
+    rankInput in = makeRankInput(m, ranks, 1);
+    const PolyMesh a = build(in, boxPatches(), 1);
+
+    // Reverse and rotate the triangles: same mesh expected
+    std::reverse(in.tris.begin(), in.tris.end());
+    std::reverse(in.regions.begin(), in.regions.end());
+    for (triFace& t : in.tris)
+    {
+        t = {t[1], t[2], t[0]};
+    }
+    const PolyMesh b = build(in, boxPatches(), 1);
+
+    EXPECT_EQ(a.faces, b.faces);
+    EXPECT_EQ(a.owner, b.owner);
+    EXPECT_EQ(a.neighbour, b.neighbour);
+}
+
+
+TEST(tetsToPolyMesh, serialMeshHasNoProcessorPatches)
+{
+    const rankInput in = makeRankInput(kuhnGrid(2, 1, 1), {}, 0);
+    const PolyMesh mesh = build(in, boxPatches());
+    for (const polyPatchInfo& pp : mesh.patches)
+    {
+        EXPECT_FALSE(pp.isProcessor()) << pp.name;
+    }
+}
+
+
+TEST(tetsToPolyMesh, twoRankCubeHasProcessorPatchesAfterPhysicalOnes)
+{
+    const tetMesh m = kuhnGrid(1, 1, 1);
+    // Tets 0-2 on rank 0, 3-5 on rank 1
+    const std::vector<int> ranks = {0, 0, 0, 1, 1, 1};
+
+    for (int rank = 0; rank < 2; ++rank)
+    {
+        const rankInput in = makeRankInput(m, ranks, rank);
+        const PolyMesh mesh = build(in, boxPatches(), rank);
+        expectValidPolyMesh(mesh, in.tets);
+
+        ASSERT_EQ(mesh.patches.size(), 8u) << "rank " << rank;
+        for (std::size_t i = 0; i < 7; ++i)
+        {
+            EXPECT_EQ(mesh.patches[i].name, boxPatches()[i].name);
+        }
+        const polyPatchInfo& pp = mesh.patches[7];
+        EXPECT_EQ(pp.name, rank == 0 ? "procBoundary0to1" : "procBoundary1to0");
+        EXPECT_EQ(pp.type, "processor");
+        EXPECT_EQ(pp.myProcNo, rank);
+        EXPECT_EQ(pp.neighbProcNo, 1 - rank);
+        EXPECT_GT(pp.size, 0);
+    }
+}
+
+
+TEST(tetsToPolyMesh, processorPatchesAreInAscendingNeighbourRank)
+{
+    const tetMesh m = kuhnGrid(3, 2, 2);
+    const std::vector<int> ranks = slabRanks(m, 3);
+
+    // Rank 1 touches ranks 0 and 2; feed rank 2's triangles first
+    rankInput in = makeRankInput(m, ranks, 1);
+    std::vector<std::size_t> order(in.tris.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort
+    (
+        order.begin(), order.end(),
+        [&](std::size_t a, std::size_t b) { return in.regions[a] < in.regions[b]; }
+    );
+    rankInput sorted = in;
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+        sorted.tris[i] = in.tris[order[i]];
+        sorted.regions[i] = in.regions[order[i]];
+    }
+    ASSERT_EQ(sorted.regions.front(), interfaceRegion(2));
+
+    const PolyMesh mesh = build(sorted, boxPatches(), 1);
+    expectValidPolyMesh(mesh, sorted.tets);
+    expectBoxPatchesByGeometry(mesh, 7);
+
+    ASSERT_EQ(mesh.patches.size(), 9u);
+    EXPECT_EQ(mesh.patches[7].name, "procBoundary1to0");
+    EXPECT_EQ(mesh.patches[7].neighbProcNo, 0);
+    EXPECT_EQ(mesh.patches[8].name, "procBoundary1to2");
+    EXPECT_EQ(mesh.patches[8].neighbProcNo, 2);
+}
+
+
+TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
+{
+    struct testCase
+    {
+        tetMesh m;
+        std::vector<int> ranks;
+        int nRanks;
+    };
+    std::vector<testCase> cases;
+    {
+        tetMesh cube = kuhnGrid(1, 1, 1);
+        cases.push_back({cube, {0, 0, 0, 1, 1, 1}, 2});
+        cases.push_back({cube, {1, 0, 1, 0, 1, 0}, 2});
+        tetMesh grid = kuhnGrid(3, 2, 2);
+        cases.push_back({grid, slabRanks(grid, 3), 3});
+        std::vector<int> scattered(grid.tets.size());
+        for (std::size_t t = 0; t < scattered.size(); ++t)
+        {
+            scattered[t] = int((t*7 + t/5) % 4);
+        }
+        cases.push_back({grid, scattered, 4});
+    }
+
+    for (std::size_t ci = 0; ci < cases.size(); ++ci)
+    {
+        const testCase& tc = cases[ci];
+        std::vector<rankInput> in;
+        std::vector<PolyMesh> mesh;
+        for (int r = 0; r < tc.nRanks; ++r)
+        {
+            in.push_back(makeRankInput(tc.m, tc.ranks, r));
+            mesh.push_back(build(in.back(), boxPatches(), r));
+            expectValidPolyMesh(mesh.back(), in.back().tets);
+        }
+
+        std::size_t nChecked = 0;
+        for (int a = 0; a < tc.nRanks; ++a)
+        {
+            for (const polyPatchInfo& pa : mesh[a].patches)
+            {
+                if (!pa.isProcessor())
+                {
+                    continue;
+                }
+                const int b = pa.neighbProcNo;
+                const auto pb = std::find_if
+                (
+                    mesh[b].patches.begin(), mesh[b].patches.end(),
+                    [&](const polyPatchInfo& p) { return p.name == processorPatchName(b, a); }
+                );
+                ASSERT_NE(pb, mesh[b].patches.end()) << "case " << ci;
+                ASSERT_EQ(pa.size, pb->size) << "case " << ci << ' ' << pa.name;
+
+                for (label i = 0; i < pa.size; ++i)
+                {
+                    const triFace& fa = mesh[a].faces[pa.start + i];
+                    const triFace& fb = mesh[b].faces[pb->start + i];
+                    std::array<globalLabel, 3> ga, gb;
+                    for (int k = 0; k < 3; ++k)
+                    {
+                        ga[k] = in[a].globalIds[fa[k]];
+                        gb[k] = in[b].globalIds[fb[k]];
+                    }
+                    // reverseFace: vertex 0 kept, the rest reversed
+                    EXPECT_EQ(ga[0], gb[0]) << "case " << ci << ' ' << pa.name << " face " << i;
+                    EXPECT_EQ(ga[1], gb[2]) << "case " << ci << ' ' << pa.name << " face " << i;
+                    EXPECT_EQ(ga[2], gb[1]) << "case " << ci << ' ' << pa.name << " face " << i;
+                    // vertex 0 is the smallest global id
+                    EXPECT_LT(ga[0], ga[1]);
+                    EXPECT_LT(ga[0], ga[2]);
+                    // and the same point in space
+                    EXPECT_EQ(mesh[a].points[fa[0]], mesh[b].points[fb[0]]);
+                    ++nChecked;
+                }
+                // Faces sorted by their sorted global ids
+                for (label i = 1; i < pa.size; ++i)
+                {
+                    auto key = [&](label j)
+                    {
+                        const triFace& f = mesh[a].faces[pa.start + j];
+                        std::array<globalLabel, 3> k =
+                            {in[a].globalIds[f[0]], in[a].globalIds[f[1]], in[a].globalIds[f[2]]};
+                        std::sort(k.begin(), k.end());
+                        return k;
+                    };
+                    EXPECT_LT(key(i - 1), key(i)) << pa.name;
+                }
+            }
+        }
+        EXPECT_GT(nChecked, 0u) << "case " << ci;
+    }
+}
+
+
+TEST(tetsToPolyMesh, mapsLeadFromTetFacesAndTrianglesToPolyMeshFaces)
+{
+    const tetMesh m = kuhnGrid(2, 2, 1);
+    const std::vector<int> ranks = slabRanks(m, 2);
+    const rankInput in = makeRankInput(m, ranks, 0);
+    tetsToPolyMeshMaps maps;
+    const PolyMesh mesh = build(in, boxPatches(), 0, &maps);
+
+    ASSERT_EQ(maps.tetFaceToFace.size(), 4*in.tets.size());
+    ASSERT_EQ(maps.boundaryTriangleToFace.size(), in.tris.size());
+
+    auto sortedFace = [](triFace f) { std::sort(f.begin(), f.end()); return f; };
+    for (std::size_t t = 0; t < in.tets.size(); ++t)
+    {
+        for (int f = 0; f < 4; ++f)
+        {
+            const label facei = maps.tetFaceToFace[4*t + f];
+            ASSERT_GE(facei, 0);
+            EXPECT_EQ(sortedFace(mesh.faces[facei]), sortedFace(tetFace(in.tets[t], f)));
+            const bool isOwner = mesh.owner[facei] == label(t);
+            const bool isNeighbour =
+                facei < mesh.nInternalFaces() && mesh.neighbour[facei] == label(t);
+            EXPECT_TRUE(isOwner || isNeighbour);
+        }
+    }
+    for (std::size_t b = 0; b < in.tris.size(); ++b)
+    {
+        const label facei = maps.boundaryTriangleToFace[b];
+        ASSERT_GE(facei, mesh.nInternalFaces());
+        EXPECT_EQ(sortedFace(mesh.faces[facei]), sortedFace(in.tris[b]));
+    }
+}
+
+
+// * * * * * * * * * * * * * * * Error tests * * * * * * * * * * * * * * * //
+
+TEST(tetsToPolyMesh, boundaryTriangleNotOnATetIsAnError)
+{
+    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0);
+    // Replace one triangle by one through the cube's interior diagonal
+    in.tris[0] = {0, 7, 3};
+    const std::string e = errorOf([&]() { build(in, boxPatches()); });
+    const std::string open =
+        "1 tet faces are on no other tet and not in the boundary surface";
+    EXPECT_NE(e.find(open), std::string::npos) << e;
+    EXPECT_NE(e.find("1 boundary surface triangles"), std::string::npos) << e;
+}
+
+
+TEST(tetsToPolyMesh, reversedBoundaryTriangleIsAnError)
+{
+    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0);
+    std::swap(in.tris[3][1], in.tris[3][2]);
+    const std::string e = errorOf([&]() { build(in, boxPatches()); });
+    EXPECT_NE(e.find("1 boundary surface triangles are not oriented outward"), std::string::npos) << e;
+}
+
+
+TEST(tetsToPolyMesh, missingBoundaryTriangleIsAnError)
+{
+    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0);
+    in.tris.pop_back();
+    in.regions.pop_back();
+    const std::string e = errorOf([&]() { build(in, boxPatches()); });
+    EXPECT_NE(e.find("1 tet faces are on no other tet"), std::string::npos) << e;
+}
+
+
+TEST(tetsToPolyMesh, surfaceTriangleOnAnInternalFaceIsAnError)
+{
+    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0);
+    // Tets 0 and 1 of the Kuhn cube share a face
+    in.tris.push_back(tetFace(in.tets[0], 0));
+    in.regions.push_back(0);
+    const std::string e = errorOf([&]() { build(in, boxPatches()); });
+    EXPECT_FALSE(e.empty());
+}
+
+
+TEST(tetsToPolyMesh, nonPositiveTetIsAnError)
+{
+    rankInput in = makeRankInput(singleTet(), {}, 0);
+    std::swap(in.tets[0][0], in.tets[0][1]);
+    const std::string e = errorOf([&]() { build(in, boxPatches()); });
+    EXPECT_NE(e.find("non-positive volume"), std::string::npos) << e;
+}
+
+
+TEST(tetsToPolyMesh, regionWithoutPatchIsAnError)
+{
+    rankInput in = makeRankInput(singleTet(), {}, 0);
+    in.regions[0] = 7;
+    const std::string e = errorOf([&]() { build(in, boxPatches()); });
+    EXPECT_NE(e.find("invalid region"), std::string::npos) << e;
+}
+
+
+TEST(tetsToPolyMesh, interfaceRegionInSerialIsAnError)
+{
+    rankInput in = makeRankInput(singleTet(), {}, 0);
+    in.regions[0] = interfaceRegion(1);
+    const std::string e = errorOf([&]() { build(in, boxPatches()); });
+    EXPECT_NE(e.find("invalid region"), std::string::npos) << e;
+}
+
+
+TEST(tetsToPolyMesh, interfaceWithOwnRankIsAnError)
+{
+    const tetMesh m = kuhnGrid(1, 1, 1);
+    rankInput in = makeRankInput(m, {0, 0, 0, 1, 1, 1}, 0);
+    for (label& r : in.regions)
+    {
+        if (isInterfaceRegion(r)) r = interfaceRegion(0);
+    }
+    const std::string e = errorOf([&]() { build(in, boxPatches(), 0); });
+    EXPECT_NE(e.find("invalid region"), std::string::npos) << e;
+}
+
+
+TEST(tetsToPolyMesh, unusedPointIsAnError)
+{
+    rankInput in = makeRankInput(singleTet(), {}, 0);
+    in.points.push_back({5, 5, 5});
+    const std::string e = errorOf([&]() { build(in, boxPatches()); });
+    EXPECT_NE(e.find("used by no tet"), std::string::npos) << e;
+}
+
+
+TEST(tetsToPolyMesh, duplicateTetIsAnError)
+{
+    rankInput in = makeRankInput(singleTet(), {}, 0);
+    in.tets.push_back(in.tets[0]);
+    const std::string e = errorOf([&]() { build(in, boxPatches()); });
+    EXPECT_FALSE(e.empty());
+}
+
+
+TEST(tetsToPolyMesh, physicalPatchOfTypeProcessorIsAnError)
+{
+    rankInput in = makeRankInput(singleTet(), {}, 0);
+    std::vector<polyPatchInfo> patches = boxPatches();
+    patches[6].type = "processor";
+    const std::string e = errorOf([&]() { build(in, patches); });
+    EXPECT_NE(e.find("type processor"), std::string::npos) << e;
+}
+
+
+TEST(tetsToPolyMesh, repeatedGlobalPointIdOnProcessorFaceIsAnError)
+{
+    const tetMesh m = kuhnGrid(1, 1, 1);
+    rankInput in = makeRankInput(m, {0, 0, 0, 1, 1, 1}, 0);
+    // Give two points of an interface triangle the same global id
+    for (std::size_t b = 0; b < in.tris.size(); ++b)
+    {
+        if (isInterfaceRegion(in.regions[b]))
+        {
+            in.globalIds[in.tris[b][1]] = in.globalIds[in.tris[b][0]];
+            break;
+        }
+    }
+    const std::string e = errorOf([&]() { build(in, boxPatches(), 0); });
+    EXPECT_NE(e.find("same global point ids"), std::string::npos) << e;
+}
+
+
+TEST(tetsToPolyMesh, globalPointIdsOfWrongSizeAreAnError)
+{
+    const tetMesh m = kuhnGrid(1, 1, 1);
+    rankInput in = makeRankInput(m, {0, 0, 0, 1, 1, 1}, 0);
+    in.globalIds.pop_back();
+    const std::string e = errorOf([&]() { build(in, boxPatches(), 0); });
+    EXPECT_NE(e.find("global point ids given"), std::string::npos) << e;
+}
