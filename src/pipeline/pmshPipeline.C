@@ -3,6 +3,7 @@
 #include "clock.H"
 #include "error.H"
 
+#include <algorithm>
 #include <iomanip>
 #include <ostream>
 
@@ -78,6 +79,64 @@ std::vector<pmsh::polyPatchInfo> pmsh::physicalPatches
 }
 
 
+std::vector<pmsh::patchNameType> pmsh::patchNamesAndTypes(const PolyMesh& mesh)
+{
+    std::vector<patchNameType> patches;
+    for (const polyPatchInfo& p : mesh.patches)
+    {
+        patches.emplace_back(p.name, p.type);
+    }
+    return patches;
+}
+
+
+void pmsh::checkFieldTemplates
+(
+    const std::vector<fieldTemplate>& fields,
+    const std::vector<polyPatchInfo>& patches
+)
+{
+    std::vector<patchNameType> physical;
+    for (const polyPatchInfo& p : patches)
+    {
+        physical.emplace_back(p.name, p.type);
+    }
+    for (const fieldTemplate& field : fields)
+    {
+        checkPatchCoverage(field, physical);
+    }
+}
+
+
+void pmsh::logCoarseMesh(const CoarseMesh& coarse)
+{
+    Info()
+        << "    coarse cells: " << coarse.nCells()
+        << ", points: " << coarse.nPoints()
+        << ", boundary faces: " << coarse.boundary.size() << '\n'
+        << "    patches:";
+    for (const std::string& name : coarse.patchNames)
+    {
+        Info() << ' ' << name;
+    }
+    Info() << '\n';
+}
+
+
+void pmsh::logPartSizes(const Communicator& comm, const std::vector<label>& cellPart)
+{
+    std::vector<label> size(comm.size(), 0);
+    for (label p : cellPart)
+    {
+        ++size[p];
+    }
+    const auto [small, large] = std::minmax_element(size.begin(), size.end());
+    Info()
+        << "    coarse cells per part min/avg/max: " << *small << " / "
+        << double(cellPart.size())/comm.size() << " / " << *large << '\n';
+}
+
+
 void pmsh::logSurfaceSizes(const Communicator& comm, const FineSurface& surface)
 {
     const minAvgMax n = reduceMinAvgMax(comm, double(surface.triangles.size()));
@@ -144,4 +203,33 @@ void pmsh::logSummary
         << memory.min << " / " << memory.avg << " / " << memory.max << '\n'
         << std::defaultfloat << std::setprecision(6)
         << "\nEnd\n\n";
+}
+
+
+void pmsh::logWritten
+(
+    const Communicator& comm,
+    const std::string& caseDir,
+    const PolyMesh& mesh
+)
+{
+    Info()
+        << "    written to " << caseDir
+        << (comm.parallel() ? "/processor*" : "/constant/polyMesh") << '\n';
+    const minAvgMax faces = reduceMinAvgMax(comm, double(mesh.nFaces()));
+    const minAvgMax points = reduceMinAvgMax(comm, double(mesh.points.size()));
+    Info() << std::fixed << std::setprecision(0);
+    if (comm.parallel())
+    {
+        Info()
+            << "    faces per rank min/avg/max: " << faces.min << " / " << faces.avg
+            << " / " << faces.max << '\n'
+            << "    points per rank min/avg/max: " << points.min << " / " << points.avg
+            << " / " << points.max << '\n';
+    }
+    else
+    {
+        Info() << "    faces: " << faces.max << ", points: " << points.max << '\n';
+    }
+    Info() << std::defaultfloat;
 }
