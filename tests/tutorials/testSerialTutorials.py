@@ -7,11 +7,12 @@ Run one test:  python3 testSerialTutorials.py sphere.test_meshOkAtEachLevelAscii
 
 import math
 import os
+import subprocess
 import sys
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import TutorialCase, cells_in_checkmesh_log  # noqa: E402
+from tutorialCase import TutorialCase, cells_in_checkmesh_log, openfoam_environment  # noqa: E402
 
 
 class CaseTest(unittest.TestCase):
@@ -80,10 +81,10 @@ class sphere(CaseTest):
 
     def test_tutorialAllrunEndsWithMeshOK(self):
         c = self.case("sphere")
-        import subprocess
+        env = openfoam_environment()
+        env["PATH"] = os.path.dirname(c.pmshFoam) + ":" + env["PATH"]
         proc = subprocess.run([os.path.join(c.dir, "Allrun")], stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, env=dict(os.environ,
-                              PATH=os.path.dirname(c.pmshFoam) + ":" + os.environ["PATH"]))
+                              stderr=subprocess.STDOUT, env=env)
         out = proc.stdout.decode()
         self.assertEqual(proc.returncode, 0, out)
         self.assertIn("Mesh OK", out)

@@ -22,6 +22,7 @@ def openfoam_environment():
     env["OMPI_ALLOW_RUN_AS_ROOT"] = "1"
     env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1"
     env.setdefault("OMPI_MCA_btl", "self,vader")
+    env["PMSH_PROJECT_DIR"] = SOURCE_DIR
     return env
 
 
