@@ -180,6 +180,16 @@ class PolyMeshFiles:
                     for t in re.findall(r"\d+\(([^()]*)\)", text[1:-1])]
         return self._list(body, False, 0, None, parse)[0]
 
+    def labels(self, name):
+        """A labelList file (owner, neighbour, *ProcAddressing)."""
+        body, binary, lb, _ = self._read(name)
+        if not binary:
+            body = self._strip_comments(body)
+        def parse(text, n):
+            return [int(x) for x in text[1:-1].split()]
+        items, _ = self._list(body, binary, lb, "<q" if lb == 8 else "<i", parse)
+        return [i[0] if isinstance(i, tuple) else i for i in items]
+
     def boundary(self):
         """[(name, dict of entries)] from the (always ascii) boundary file."""
         body, _, _, _ = self._read("boundary")

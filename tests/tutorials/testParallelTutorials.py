@@ -1,0 +1,252 @@
+"""Parallel pmshFoam end to end: every tutorial at several rank counts and
+refinement levels straight into processor*/, judged by OpenFOAM itself:
+checkMesh -parallel, a solver run without decomposePar, reconstructParMesh
+and reconstructPar; plus determinism, cell totals against the serial run,
+and a global mesh assembled from the procAddressing files.
+
+Run one test:  python3 testParallelTutorials.py sphere.test_np2
+"""
+
+import filecmp
+import os
+import re
+import sys
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from tutorialCase import PolyMeshFiles, cells_in_checkmesh_log  # noqa: E402
+from testSerialTutorials import CaseTest  # noqa: E402
+
+
+def write_list_file(path, cls, obj, items, fmt):
+    with open(path, "w") as f:
+        f.write("FoamFile\n{\n    version 2.0;\n    format ascii;\n    class %s;\n"
+                "    object %s;\n}\n\n%d\n(\n" % (cls, obj, len(items)))
+        for item in items:
+            f.write(fmt(item) + "\n")
+        f.write(")\n")
+
+
+class ParallelCaseTest(CaseTest):
+
+    def mesh_parallel(self, name, np, r, **entries):
+        """pmshFoam -parallel, then checkMesh -parallel must say Mesh OK and
+        match coupled points; returns (case, total cells)."""
+        c = self.case(name, refinementLevels=r, **entries)
+        _, log = c.run("pmshFoam", np=np)
+        self.assertIn("End", log)
+        for p in range(np):
+            self.assertTrue(c.exists("processor%d/constant/polyMesh/faceProcAddressing" % p))
+            self.assertTrue(c.exists("processor%d/0/U" % p))
+        with open(os.path.join(c.dir, "system/decomposeParDict")) as f:
+            self.assertRegex(f.read(), r"numberOfSubdomains\s+%d;" % np)
+        text = c.check_mesh(np=np)
+        self.assertRegex(text, r"Coupled point location match.*OK")
+        return c, cells_in_checkmesh_log(text)
+
+    def full_cycle(self, name, np, r):
+        """Mesh, check, solve, reconstruct mesh and fields."""
+        c, cells = self.mesh_parallel(name, np, r)
+        _, log = c.run("simpleFoam", np=np)
+        self.assertRegex(log, r"(?m)^End")
+        c.run("reconstructParMesh", "-constant")
+        merged = c.check_mesh()
+        self.assertEqual(cells_in_checkmesh_log(merged), cells)
+        _, log = c.run("reconstructPar", "-latestTime")
+        self.assertNotIn("FOAM FATAL", log)
+        self.assertTrue(c.exists("5/U"), "reconstructPar wrote no 5/U")
+        return c
+
+
+def make_cycle_test(name, np, r):
+    def test(self):
+        self.full_cycle(name, np, r)
+    test.__name__ = "test_np%d_r%d" % (np, r)
+    return test
+
+
+class sphere(ParallelCaseTest):
+    pass
+
+
+class shaft(ParallelCaseTest):
+    pass
+
+
+class sphereSTL(ParallelCaseTest):
+    pass
+
+
+for cls in (sphere, shaft, sphereSTL):
+    for np in (2, 3, 4):
+        for r in (1, 2):
+            t = make_cycle_test(cls.__name__, np, r)
+            setattr(cls, t.__name__, t)
+
+
+class parallelRun(ParallelCaseTest):
+
+    def test_sixteenRanksPassCheckMeshParallel(self):
+        self.mesh_parallel("sphere", 16, 1)
+
+    def test_identicalInputsGiveByteIdenticalProcessorTrees(self):
+        a, _ = self.mesh_parallel("shaft", 3, 1)
+        b = self.case("shaft", refinementLevels=1)
+        b.run("pmshFoam", np=3)
+        for p in range(3):
+            cmp = filecmp.dircmp(os.path.join(a.dir, "processor%d" % p),
+                                 os.path.join(b.dir, "processor%d" % p))
+            stack = [cmp]
+            while stack:
+                d = stack.pop()
+                self.assertEqual(d.left_only + d.right_only, [], d.left)
+                _, mismatch, errors = filecmp.cmpfiles(d.left, d.right, d.common_files,
+                                                       shallow=False)
+                self.assertEqual(mismatch + errors, [], d.left)
+                stack.extend(d.subdirs.values())
+
+    def test_totalCellsWithinFifteenPercentOfSerial(self):
+        serial = self.case("sphere", refinementLevels=2)
+        serial.run("pmshFoam")
+        nSerial = cells_in_checkmesh_log(serial.check_mesh())
+        for np in (2, 4):
+            _, n = self.mesh_parallel("sphere", np, 2)
+            self.assertLess(abs(n - nSerial) / nSerial, 0.15,
+                            "%d cells on %d ranks vs %d serial" % (n, np, nSerial))
+
+    def test_parallelOnOneRankIsAClearError(self):
+        c = self.case("sphere")
+        code, log = c.run("pmshFoam", "-parallel", check=False)
+        self.assertNotEqual(code, 0)
+        self.assertIn("FOAM FATAL ERROR", log)
+        self.assertIn("1 processor", log)
+        self.assertFalse(c.exists("processor0"))
+
+    def test_binaryOutputPassesCheckMeshParallel(self):
+        c = self.case("sphere", refinementLevels=1)
+        c.write_format("binary")
+        c.run("pmshFoam", np=3)
+        self.assertRegex(c.check_mesh(np=3), r"Coupled point location match.*OK")
+
+    def test_existingDecomposeParDictKeepsItsOtherEntries(self):
+        c = self.case("sphere", refinementLevels=0)
+        with open(os.path.join(c.dir, "system/decomposeParDict"), "w") as f:
+            f.write("FoamFile\n{\n    version 2.0;\n    format ascii;\n    class dictionary;\n"
+                    "    object decomposeParDict;\n}\nnumberOfSubdomains 7;\n"
+                    "method hierarchical;\ncoeffs { n (1 1 1); }\n")
+        c.run("pmshFoam", np=2)
+        with open(os.path.join(c.dir, "system/decomposeParDict")) as f:
+            text = f.read()
+        self.assertRegex(text, r"numberOfSubdomains\s+2;")
+        self.assertIn("method hierarchical;", text)
+
+    def test_procAddressingDescribesAValidGlobalMesh(self):
+        """Assemble constant/polyMesh from the processor meshes through
+        their procAddressing alone; checkMesh must accept it, and
+        reconstructPar must map the parallel cell centres onto it."""
+        np = 3
+        c, nCells = self.mesh_parallel("shaft", np, 1)
+        procs = [PolyMeshFiles(os.path.join(c.dir, "processor%d/constant/polyMesh" % p))
+                 for p in range(np)]
+
+        points, faces, owner, neighbour = {}, {}, {}, {}
+        patch_faces = {}
+        for m in procs:
+            pts = m.points()
+            fcs = m.faces()
+            own = m.labels("owner")
+            nbr = m.labels("neighbour")
+            pAddr = m.labels("pointProcAddressing")
+            fAddr = m.labels("faceProcAddressing")
+            cAddr = m.labels("cellProcAddressing")
+            bAddr = m.labels("boundaryProcAddressing")
+            for local, g in enumerate(pAddr):
+                points[g] = pts[local]
+            patches = m.boundary()
+            for local, a in enumerate(fAddr):
+                g = abs(a) - 1
+                face = [pAddr[v] for v in fcs[local]]
+                cell = cAddr[own[local]]
+                if a > 0:
+                    faces[g] = face
+                    owner[g] = cell
+                else:
+                    neighbour[g] = cell
+                if local < len(nbr):
+                    self.assertGreater(a, 0)
+                    neighbour[g] = cAddr[nbr[local]]
+            for pi, (name, entries) in enumerate(patches):
+                start, n = int(entries["startFace"]), int(entries["nFaces"])
+                if entries["type"] == "processor":
+                    self.assertEqual(bAddr[pi], -1)
+                    continue
+                self.assertEqual(bAddr[pi], pi)
+                for local in range(start, start + n):
+                    patch_faces.setdefault(pi, (name, entries["type"], []))[2].append(
+                        fAddr[local] - 1)
+
+        nFaces = len(faces)
+        self.assertEqual(sorted(faces), list(range(nFaces)), "global faces not contiguous")
+        self.assertEqual(sorted(points), list(range(len(points))), "points not contiguous")
+        nInternal = len(neighbour)
+        self.assertEqual(sorted(neighbour), list(range(nInternal)))
+
+        mesh = os.path.join(c.dir, "constant/polyMesh")
+        os.makedirs(mesh, exist_ok=True)
+        write_list_file(os.path.join(mesh, "points"), "vectorField", "points",
+                        [points[i] for i in range(len(points))],
+                        lambda p: "(%.17g %.17g %.17g)" % p)
+        write_list_file(os.path.join(mesh, "faces"), "faceList", "faces",
+                        [faces[i] for i in range(nFaces)],
+                        lambda f: "%d(%s)" % (len(f), " ".join(map(str, f))))
+        write_list_file(os.path.join(mesh, "owner"), "labelList", "owner",
+                        [owner[i] for i in range(nFaces)], str)
+        write_list_file(os.path.join(mesh, "neighbour"), "labelList", "neighbour",
+                        [neighbour[i] for i in range(nInternal)], str)
+        with open(os.path.join(mesh, "boundary"), "w") as f:
+            f.write("FoamFile\n{\n    version 2.0;\n    format ascii;\n"
+                    "    class polyBoundaryMesh;\n    object boundary;\n}\n\n%d\n(\n"
+                    % len(patch_faces))
+            for pi in sorted(patch_faces):
+                name, ptype, gfaces = patch_faces[pi]
+                gfaces.sort()
+                self.assertEqual(gfaces, list(range(gfaces[0], gfaces[0] + len(gfaces))))
+                f.write("    %s { type %s; nFaces %d; startFace %d; }\n"
+                        % (name, ptype, len(gfaces), gfaces[0]))
+            f.write(")\n")
+        self.assertEqual(cells_in_checkmesh_log(c.check_mesh()), nCells)
+
+        # Cell and face centres computed in parallel and mapped back by
+        # reconstructPar through our addressing equal the serial ones
+        c.run("postProcess", "-func", "writeCellCentres", np=np)
+        c.run("reconstructPar", "-withZero", "-fields", "(C)")
+        reconstructed = read_vector_field(os.path.join(c.dir, "0/C"))
+        c.run("postProcess", "-func", "writeCellCentres", log="log.serialCentres")
+        serial = read_vector_field(os.path.join(c.dir, "0/C"))
+        self.assertEqual(sorted(reconstructed), sorted(serial))
+        for key in serial:
+            self.assertEqual(len(reconstructed[key]), len(serial[key]), key)
+            worst = max(max(abs(a - b) for a, b in zip(u, v))
+                        for u, v in zip(reconstructed[key], serial[key]))
+            self.assertLess(worst, 1e-9, "%s differs by %g" % (key, worst))
+
+
+def read_vector_field(path):
+    """{'internalField' or patch name: [vectors]} of an ascii volVectorField."""
+    with open(path) as f:
+        text = f.read()
+    def vectors(block):
+        return [tuple(float(x) for x in v.split()) for v in re.findall(r"\(([^()]+)\)", block)]
+    result = {}
+    m = re.search(r"internalField\s+nonuniform\s+List<vector>\s*\d+\s*\((.*?)\n\)\s*;", text, re.S)
+    result["internalField"] = vectors(m.group(1))
+    boundary = text[text.index("boundaryField"):]
+    for name, body in re.findall(r"\n    (\w+)\n    \{(.*?)\n    \}", boundary, re.S):
+        v = re.search(r"value\s+nonuniform\s+List<vector>\s*\d+\s*\((.*?)\n\)\s*;", body, re.S)
+        if v:
+            result[name] = vectors(v.group(1))
+    return result
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
