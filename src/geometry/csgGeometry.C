@@ -1,0 +1,132 @@
+/*---------------------------------------------------------------------------*\
+  pmshFoam: Netgen CSG geometry (Netgen itself is behind netgenInterface).
+\*---------------------------------------------------------------------------*/
+
+#include "csgGeometry.H"
+#include "netgenInterface.H"
+#include "error.H"
+
+#include <algorithm>
+#include <map>
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+pmsh::csgGeometry::csgGeometry(const std::string& fileName)
+:
+    fileName_(fileName),
+    model_(new ng::csgModel(fileName))
+{}
+
+
+pmsh::csgGeometry::~csgGeometry() = default;
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+const std::vector<std::string>& pmsh::csgGeometry::patchNames() const
+{
+    if (!meshed_)
+    {
+        throw FatalError
+        (
+            msg()
+                << "The patch names of CSG geometry \"" << fileName_ << "\""
+                << " are known once its coarse mesh is generated (Netgen"
+                << " numbers unnamed faces while meshing): use the coarse"
+                << " mesh's patchNames",
+            "pmsh::csgGeometry::patchNames"
+        );
+    }
+    return patchNames_;
+}
+
+
+pmsh::label pmsh::csgGeometry::nSurfaces() const
+{
+    return model_->nSurfaces();
+}
+
+
+pmsh::CoarseMesh pmsh::csgGeometry::coarseMesh
+(
+    const coarseMeshParameters& parameters
+) const
+{
+    if (!(parameters.maxCellSize > 0))
+    {
+        throw FatalError
+        (
+            msg()
+                << "maxCellSize " << parameters.maxCellSize << " for CSG"
+                << " geometry \"" << fileName_ << "\" must be positive",
+            "pmsh::csgGeometry::coarseMesh"
+        );
+    }
+
+    ng::meshParameters mp;
+    mp.maxh = parameters.maxCellSize;
+    mp.grading = parameters.grading;
+    ng::volumeMesh m = model_->generateMesh(mp);
+
+    // Patch name of each bc number: Netgen's bcname, else patch<bc>
+    // ("default" is Netgen's name for "none given")
+    std::map<label, std::string> bcPatchName;
+    for (const auto& bn : m.bcNames)
+    {
+        bcPatchName[bn.first] =
+            (bn.second.empty() || bn.second == "default")
+          ? "patch" + std::to_string(bn.first)
+          : bn.second;
+    }
+
+    // One patch per name, ordered by the smallest bc number with that name
+    // (the map iterates bc numbers in increasing order)
+    std::vector<std::string> names;
+    std::map<std::string, label> nameIndex;
+    std::map<label, label> bcPatch;
+    for (const auto& bp : bcPatchName)
+    {
+        auto it = nameIndex.find(bp.second);
+        if (it == nameIndex.end())
+        {
+            it = nameIndex.emplace(bp.second, label(names.size())).first;
+            names.push_back(bp.second);
+        }
+        bcPatch[bp.first] = it->second;
+    }
+
+    CoarseMesh coarse;
+    coarse.points = std::move(m.points);
+    coarse.tets = std::move(m.tets);
+    coarse.boundary.reserve(m.boundary.size());
+    for (const ng::boundaryTriangle& b : m.boundary)
+    {
+        coarse.boundary.push_back({b.v, bcPatch.at(b.bc), b.surface});
+    }
+    coarse.patchNames = names;
+
+    patchNames_ = names;
+    meshed_ = true;
+
+    return coarse;
+}
+
+
+pmsh::point pmsh::csgGeometry::projectToSurface(const point& p, label s) const
+{
+    return model_->projectToSurface(p, s);
+}
+
+
+pmsh::point pmsh::csgGeometry::projectToEdge
+(
+    const point& p,
+    label s1,
+    label s2
+) const
+{
+    return model_->projectToEdge(p, s1, s2);
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,816 @@
+/*---------------------------------------------------------------------------*\
+  pmshFoam: STL geometry: regions, projection and the coarse mesh (see
+  stlGeometry.H). Netgen itself is behind netgenInterface.
+\*---------------------------------------------------------------------------*/
+
+#include "stlGeometry.H"
+#include "netgenInterface.H"
+#include "error.H"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <map>
+
+// * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
+
+namespace pmsh
+{
+namespace
+{
+
+//- Squared distance from p to the box [lo, hi] (0 inside).
+inline double boxDistSqr(const point& p, const point& lo, const point& hi)
+{
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+        const double d =
+            p[k] < lo[k] ? lo[k] - p[k] : (p[k] > hi[k] ? p[k] - hi[k] : 0.0);
+        d2 += d*d;
+    }
+    return d2;
+}
+
+
+//- Closest point to p on triangle (a, b, c), by the Voronoi regions of its
+//  vertices, edges and interior (Ericson, Real-Time Collision Detection).
+point closestOnTriangle(const point& p, const point& a, const point& b, const point& c)
+{
+    const vector ab = b - a;
+    const vector ac = c - a;
+    const vector ap = p - a;
+    const double d1 = dot(ab, ap);
+    const double d2 = dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0)
+    {
+        return a;
+    }
+
+    const vector bp = p - b;
+    const double d3 = dot(ab, bp);
+    const double d4 = dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3)
+    {
+        return b;
+    }
+
+    const double vc = d1*d4 - d3*d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0)
+    {
+        return a + (d1/(d1 - d3))*ab;
+    }
+
+    const vector cp = p - c;
+    const double d5 = dot(ab, cp);
+    const double d6 = dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6)
+    {
+        return c;
+    }
+
+    const double vb = d5*d2 - d1*d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0)
+    {
+        return a + (d2/(d2 - d6))*ac;
+    }
+
+    const double va = d3*d6 - d5*d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    {
+        return b + ((d4 - d3)/((d4 - d3) + (d5 - d6)))*(c - b);
+    }
+
+    const double denom = 1/(va + vb + vc);
+    return a + (vb*denom)*ab + (vc*denom)*ac;
+}
+
+
+//- Closest point to p on segment (a, b).
+point closestOnSegment(const point& p, const point& a, const point& b)
+{
+    const vector ab = b - a;
+    const double l2 = magSqr(ab);
+    if (!(l2 > 0))
+    {
+        return a;
+    }
+    const double t = dot(p - a, ab)/l2;
+    if (t <= 0)
+    {
+        return a;
+    }
+    if (t >= 1)
+    {
+        return b;
+    }
+    return a + t*ab;
+}
+
+
+//- A bounding box tree (median split on the widest axis, leaves of up to
+//  four items) for nearest-item queries. Queries are deterministic: the
+//  traversal order is fixed and ties go to the first item found.
+class boxTree
+{
+public:
+
+    struct entry
+    {
+        label id;
+        point lo, hi, centre;
+    };
+
+private:
+
+    struct node
+    {
+        point lo, hi;
+        label begin, end;       // item range (leaves)
+        label left, right;      // children; -1 for a leaf
+    };
+
+    std::vector<node> nodes_;
+    std::vector<label> ids_;
+
+    static constexpr label leafSize = 4;
+
+    label build(std::vector<entry>& e, label b, label n)
+    {
+        node nd;
+        nd.lo = e[b].lo;
+        nd.hi = e[b].hi;
+        point clo = e[b].centre;
+        point chi = e[b].centre;
+        for (label i = b; i < b + n; ++i)
+        {
+            for (int k = 0; k < 3; ++k)
+            {
+                nd.lo[k] = std::min(nd.lo[k], e[i].lo[k]);
+                nd.hi[k] = std::max(nd.hi[k], e[i].hi[k]);
+                clo[k] = std::min(clo[k], e[i].centre[k]);
+                chi[k] = std::max(chi[k], e[i].centre[k]);
+            }
+        }
+        nd.begin = b;
+        nd.end = b + n;
+        nd.left = nd.right = -1;
+
+        const label index = label(nodes_.size());
+        nodes_.push_back(nd);
+
+        if (n > leafSize)
+        {
+            int axis = 0;
+            for (int k = 1; k < 3; ++k)
+            {
+                if (chi[k] - clo[k] > chi[axis] - clo[axis])
+                {
+                    axis = k;
+                }
+            }
+            const label half = n/2;
+            std::nth_element
+            (
+                e.begin() + b, e.begin() + b + half, e.begin() + b + n,
+                [axis](const entry& x, const entry& y)
+                {
+                    return x.centre[axis] != y.centre[axis]
+                        ? x.centre[axis] < y.centre[axis]
+                        : x.id < y.id;
+                }
+            );
+            const label left = build(e, b, half);
+            const label right = build(e, b + half, n - half);
+            nodes_[index].left = left;
+            nodes_[index].right = right;
+        }
+        return index;
+    }
+
+public:
+
+    boxTree() = default;
+
+    explicit boxTree(std::vector<entry> e)
+    {
+        if (e.empty())
+        {
+            return;
+        }
+        nodes_.reserve(2*e.size()/leafSize + 2);
+        build(e, 0, label(e.size()));
+        ids_.resize(e.size());
+        for (std::size_t i = 0; i < e.size(); ++i)
+        {
+            ids_[i] = e[i].id;
+        }
+    }
+
+    bool empty() const
+    {
+        return nodes_.empty();
+    }
+
+    //- Item nearest to p; eval(id, p, closest) returns the squared
+    //  distance from p to item id and sets closest. -1 if the tree is empty.
+    template<class Eval>
+    label nearest(const point& p, const Eval& eval, point& closest, double& d2) const
+    {
+        label best = -1;
+        d2 = std::numeric_limits<double>::infinity();
+        if (nodes_.empty())
+        {
+            return best;
+        }
+
+        // Depth is about log2(n/4) + 1, so 128 entries never overflow
+        std::pair<label, double> stack[128];
+        int top = 0;
+        stack[top++] = {0, boxDistSqr(p, nodes_[0].lo, nodes_[0].hi)};
+        while (top)
+        {
+            const auto cur = stack[--top];
+            if (cur.second >= d2)
+            {
+                continue;
+            }
+            const node& nd = nodes_[cur.first];
+            if (nd.left < 0)
+            {
+                for (label i = nd.begin; i < nd.end; ++i)
+                {
+                    point q;
+                    const double di = eval(ids_[i], p, q);
+                    if (di < d2)
+                    {
+                        d2 = di;
+                        best = ids_[i];
+                        closest = q;
+                    }
+                }
+            }
+            else
+            {
+                const double dl = boxDistSqr(p, nodes_[nd.left].lo, nodes_[nd.left].hi);
+                const double dr = boxDistSqr(p, nodes_[nd.right].lo, nodes_[nd.right].hi);
+                // Far child first: the near one is popped next
+                if (dl <= dr)
+                {
+                    stack[top++] = {nd.right, dr};
+                    stack[top++] = {nd.left, dl};
+                }
+                else
+                {
+                    stack[top++] = {nd.left, dl};
+                    stack[top++] = {nd.right, dr};
+                }
+            }
+        }
+        return best;
+    }
+
+    //- Call visit(id) for every item whose box is within sqrt(r2) of p.
+    template<class Visit>
+    void near(const point& p, double r2, const Visit& visit) const
+    {
+        if (nodes_.empty())
+        {
+            return;
+        }
+        std::vector<label> stack{0};
+        while (!stack.empty())
+        {
+            const node& nd = nodes_[stack.back()];
+            stack.pop_back();
+            if (boxDistSqr(p, nd.lo, nd.hi) > r2)
+            {
+                continue;
+            }
+            if (nd.left < 0)
+            {
+                for (label i = nd.begin; i < nd.end; ++i)
+                {
+                    visit(ids_[i]);
+                }
+            }
+            else
+            {
+                stack.push_back(nd.right);
+                stack.push_back(nd.left);
+            }
+        }
+    }
+};
+
+} // End anonymous namespace
+} // End namespace pmsh
+
+
+// * * * * * * * * * * * * * * * * Private data * * * * * * * * * * * * * * //
+
+struct pmsh::stlGeometry::impl
+{
+    stlSurface surface;
+
+    std::vector<label> region;              // per triangle
+    std::vector<label> regionSolid;         // per region
+    label nRegions = 0;
+
+    std::vector<std::array<label, 2>> featureEdges;
+
+    boxTree allTriangles;
+    std::vector<boxTree> regionTriangles;   // per region
+
+    //- Original edges between two regions, keyed by (lower, higher) region
+    struct edgeSet
+    {
+        std::vector<std::array<label, 2>> segments;
+        boxTree tree;
+    };
+    std::map<std::pair<label, label>, edgeSet> regionEdges;
+
+    double diagonal = 0;
+
+    boxTree::entry triangleEntry(label t) const
+    {
+        const triFace& f = surface.triangles[t];
+        boxTree::entry e;
+        e.id = t;
+        e.lo = e.hi = surface.points[f[0]];
+        for (int k = 1; k < 3; ++k)
+        {
+            for (int j = 0; j < 3; ++j)
+            {
+                e.lo[j] = std::min(e.lo[j], surface.points[f[k]][j]);
+                e.hi[j] = std::max(e.hi[j], surface.points[f[k]][j]);
+            }
+        }
+        for (int j = 0; j < 3; ++j)
+        {
+            e.centre[j] = 0.5*(e.lo[j] + e.hi[j]);
+        }
+        return e;
+    }
+
+    //- Squared distance from p to triangle t and the closest point.
+    double triangleDistSqr(label t, const point& p, point& q) const
+    {
+        const triFace& f = surface.triangles[t];
+        q = closestOnTriangle
+        (
+            p, surface.points[f[0]], surface.points[f[1]], surface.points[f[2]]
+        );
+        return magSqr(p - q);
+    }
+};
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+pmsh::stlGeometry::stlGeometry(const std::string& fileName)
+:
+    fileName_(fileName),
+    impl_(new impl)
+{
+    impl& d = *impl_;
+    d.surface = readStl(fileName);
+    checkStl(d.surface, fileName);
+
+    const stlSurface& s = d.surface;
+    const label nt = s.nTriangles();
+
+    {
+        point lo = s.points[0], hi = s.points[0];
+        for (const point& p : s.points)
+        {
+            for (int k = 0; k < 3; ++k)
+            {
+                lo[k] = std::min(lo[k], p[k]);
+                hi[k] = std::max(hi[k], p[k]);
+            }
+        }
+        d.diagonal = std::sqrt(magSqr(hi - lo));
+    }
+
+    // Unit normals
+    std::vector<vector> normal(nt);
+    for (label t = 0; t < nt; ++t)
+    {
+        const vector n = s.areaNormal(t);
+        normal[t] = (1/std::sqrt(magSqr(n)))*n;
+    }
+
+    // Edges with their two triangles (checkStl: closed and manifold)
+    struct edge
+    {
+        label lo, hi, tri;
+    };
+    std::vector<edge> edges;
+    edges.reserve(3*std::size_t(nt));
+    for (label t = 0; t < nt; ++t)
+    {
+        const triFace& f = s.triangles[t];
+        for (int k = 0; k < 3; ++k)
+        {
+            const label a = f[k];
+            const label b = f[(k + 1) % 3];
+            edges.push_back({std::min(a, b), std::max(a, b), t});
+        }
+    }
+    std::sort
+    (
+        edges.begin(), edges.end(),
+        [](const edge& x, const edge& y)
+        {
+            return x.lo != y.lo ? x.lo < y.lo
+                 : x.hi != y.hi ? x.hi < y.hi
+                 : x.tri < y.tri;
+        }
+    );
+
+    // Triangle neighbours across non-feature edges, and the feature edges
+    const double cosFeature = std::cos(featureAngle*M_PI/180.0);
+    std::vector<std::array<label, 3>> smoothNeighbour(nt, {-1, -1, -1});
+    std::vector<int> nSmooth(nt, 0);
+    for (std::size_t i = 0; i + 1 < edges.size(); i += 2)
+    {
+        const label t1 = edges[i].tri;
+        const label t2 = edges[i + 1].tri;
+        const bool feature =
+            s.solid[t1] != s.solid[t2]
+         || dot(normal[t1], normal[t2]) < cosFeature;
+        if (feature)
+        {
+            d.featureEdges.push_back({edges[i].lo, edges[i].hi});
+        }
+        else
+        {
+            smoothNeighbour[t1][nSmooth[t1]++] = t2;
+            smoothNeighbour[t2][nSmooth[t2]++] = t1;
+        }
+    }
+
+    // Regions: flood fill across smooth edges, seeded in triangle order
+    d.region.assign(nt, -1);
+    std::vector<label> stack;
+    for (label seed = 0; seed < nt; ++seed)
+    {
+        if (d.region[seed] >= 0)
+        {
+            continue;
+        }
+        const label r = d.nRegions++;
+        d.regionSolid.push_back(s.solid[seed]);
+        d.region[seed] = r;
+        stack.push_back(seed);
+        while (!stack.empty())
+        {
+            const label t = stack.back();
+            stack.pop_back();
+            for (int k = 0; k < nSmooth[t]; ++k)
+            {
+                const label u = smoothNeighbour[t][k];
+                if (d.region[u] < 0)
+                {
+                    d.region[u] = r;
+                    stack.push_back(u);
+                }
+            }
+        }
+    }
+
+    // Trees over all triangles and over each region's
+    {
+        std::vector<boxTree::entry> all(nt);
+        std::vector<std::vector<boxTree::entry>> perRegion(d.nRegions);
+        for (label t = 0; t < nt; ++t)
+        {
+            all[t] = d.triangleEntry(t);
+            perRegion[d.region[t]].push_back(all[t]);
+        }
+        d.allTriangles = boxTree(std::move(all));
+        d.regionTriangles.resize(d.nRegions);
+        for (label r = 0; r < d.nRegions; ++r)
+        {
+            d.regionTriangles[r] = boxTree(std::move(perRegion[r]));
+        }
+    }
+
+    // Original edges between two regions, with a tree per region pair
+    for (std::size_t i = 0; i + 1 < edges.size(); i += 2)
+    {
+        const label r1 = d.region[edges[i].tri];
+        const label r2 = d.region[edges[i + 1].tri];
+        if (r1 != r2)
+        {
+            d.regionEdges[{std::min(r1, r2), std::max(r1, r2)}]
+                .segments.push_back({edges[i].lo, edges[i].hi});
+        }
+    }
+    for (auto& re : d.regionEdges)
+    {
+        std::vector<boxTree::entry> entries;
+        const auto& segs = re.second.segments;
+        for (std::size_t i = 0; i < segs.size(); ++i)
+        {
+            boxTree::entry e;
+            e.id = label(i);
+            const point& a = s.points[segs[i][0]];
+            const point& b = s.points[segs[i][1]];
+            for (int k = 0; k < 3; ++k)
+            {
+                e.lo[k] = std::min(a[k], b[k]);
+                e.hi[k] = std::max(a[k], b[k]);
+                e.centre[k] = 0.5*(e.lo[k] + e.hi[k]);
+            }
+            entries.push_back(e);
+        }
+        re.second.tree = boxTree(std::move(entries));
+    }
+}
+
+
+pmsh::stlGeometry::~stlGeometry() = default;
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+const std::vector<std::string>& pmsh::stlGeometry::patchNames() const
+{
+    return impl_->surface.solidNames;
+}
+
+
+const pmsh::stlSurface& pmsh::stlGeometry::surface() const
+{
+    return impl_->surface;
+}
+
+
+pmsh::label pmsh::stlGeometry::nRegions() const
+{
+    return impl_->nRegions;
+}
+
+
+const std::vector<pmsh::label>& pmsh::stlGeometry::triangleRegion() const
+{
+    return impl_->region;
+}
+
+
+const std::vector<std::array<pmsh::label, 2>>&
+pmsh::stlGeometry::featureEdges() const
+{
+    return impl_->featureEdges;
+}
+
+
+pmsh::label pmsh::stlGeometry::nearestTriangle(const point& p, point& nearest) const
+{
+    const impl& d = *impl_;
+    double d2;
+    return d.allTriangles.nearest
+    (
+        p,
+        [&d](label t, const point& x, point& q) { return d.triangleDistSqr(t, x, q); },
+        nearest,
+        d2
+    );
+}
+
+
+pmsh::point pmsh::stlGeometry::projectToSurface(const point& p, label s) const
+{
+    const impl& d = *impl_;
+    if (s < 0 || s >= d.nRegions)
+    {
+        throw FatalError
+        (
+            msg()
+                << "Surface " << s << " does not exist in STL geometry \""
+                << fileName_ << "\": valid surfaces are 0.." << d.nRegions - 1,
+            "pmsh::stlGeometry::projectToSurface"
+        );
+    }
+    point q = p;
+    double d2;
+    d.regionTriangles[s].nearest
+    (
+        p,
+        [&d](label t, const point& x, point& c) { return d.triangleDistSqr(t, x, c); },
+        q,
+        d2
+    );
+    return q;
+}
+
+
+pmsh::point pmsh::stlGeometry::projectToEdge
+(
+    const point& p,
+    label s1,
+    label s2
+) const
+{
+    const impl& d = *impl_;
+    if (s2 < 0 || s2 >= d.nRegions)
+    {
+        // Throws naming the valid surfaces (s1 is checked the same way)
+        return projectToSurface(p, s2);
+    }
+    const auto it = d.regionEdges.find({std::min(s1, s2), std::max(s1, s2)});
+    if (s1 == s2 || it == d.regionEdges.end())
+    {
+        // The regions share no original edge (or are one): the surface is
+        // the best there is
+        return projectToSurface(p, s1);
+    }
+    const auto& segs = it->second.segments;
+    const auto& pts = d.surface.points;
+    point q = p;
+    double d2;
+    it->second.tree.nearest
+    (
+        p,
+        [&segs, &pts](label i, const point& x, point& c)
+        {
+            c = closestOnSegment(x, pts[segs[i][0]], pts[segs[i][1]]);
+            return magSqr(x - c);
+        },
+        q,
+        d2
+    );
+    return q;
+}
+
+
+pmsh::CoarseMesh pmsh::stlGeometry::coarseMesh
+(
+    const coarseMeshParameters& parameters
+) const
+{
+    const char* function = "pmsh::stlGeometry::coarseMesh";
+    const impl& d = *impl_;
+
+    if (!(parameters.maxCellSize > 0))
+    {
+        throw FatalError
+        (
+            msg()
+                << "maxCellSize " << parameters.maxCellSize << " for STL"
+                << " geometry \"" << fileName_ << "\" must be positive",
+            function
+        );
+    }
+
+    ng::meshParameters mp;
+    mp.maxh = parameters.maxCellSize;
+    mp.grading = parameters.grading;
+    ng::volumeMesh m = ng::stlVolumeMesh
+    (
+        d.surface.points,
+        d.surface.triangles,
+        d.featureEdges,
+        mp,
+        "STL file \"" + fileName_ + "\""
+    );
+
+    // Netgen's boundary vertices lie on the STL up to rounding; a vertex is
+    // "on" a region within this distance
+    const double tol = 1e-8*d.diagonal;
+    const double tol2 = tol*tol;
+
+    // Regions within tol of a point (sorted, unique)
+    auto regionsAt = [&d, tol2](const point& p)
+    {
+        std::vector<label> r;
+        d.allTriangles.near
+        (
+            p, tol2,
+            [&](label t)
+            {
+                point q;
+                if (d.triangleDistSqr(t, p, q) <= tol2)
+                {
+                    r.push_back(d.region[t]);
+                }
+            }
+        );
+        std::sort(r.begin(), r.end());
+        r.erase(std::unique(r.begin(), r.end()), r.end());
+        return r;
+    };
+
+    // Regions of every boundary point, computed once
+    std::vector<std::vector<label>> pointRegions(m.points.size());
+    std::vector<bool> done(m.points.size(), false);
+
+    CoarseMesh coarse;
+    coarse.boundary.reserve(m.boundary.size());
+    label nOff = 0;
+    double maxOff = 0;
+    for (const ng::boundaryTriangle& b : m.boundary)
+    {
+        std::vector<label> common;
+        for (int k = 0; k < 3; ++k)
+        {
+            const label v = b.v[k];
+            if (!done[v])
+            {
+                pointRegions[v] = regionsAt(m.points[v]);
+                done[v] = true;
+            }
+            if (k == 0)
+            {
+                common = pointRegions[v];
+            }
+            else
+            {
+                std::vector<label> c;
+                std::set_intersection
+                (
+                    common.begin(), common.end(),
+                    pointRegions[v].begin(), pointRegions[v].end(),
+                    std::back_inserter(c)
+                );
+                common.swap(c);
+            }
+        }
+
+        const point c = (1.0/3.0)
+          * (m.points[b.v[0]] + m.points[b.v[1]] + m.points[b.v[2]]);
+
+        label r = -1;
+        if (common.size() == 1)
+        {
+            r = common[0];
+        }
+        else if (common.size() > 1)
+        {
+            // All three vertices on region boundaries: the region nearest
+            // to the centroid (ties to the lower region)
+            double best = std::numeric_limits<double>::infinity();
+            for (label cr : common)
+            {
+                double d2;
+                point q;
+                d.regionTriangles[cr].nearest
+                (
+                    c,
+                    [&d](label t, const point& x, point& y) { return d.triangleDistSqr(t, x, y); },
+                    q,
+                    d2
+                );
+                if (d2 < best)
+                {
+                    best = d2;
+                    r = cr;
+                }
+            }
+        }
+        else
+        {
+            // No region holds all three vertices: Netgen's face crosses a
+            // feature edge (or a vertex is off the STL)
+            ++nOff;
+            point q;
+            r = d.region[nearestTriangle(c, q)];
+            for (label v : b.v)
+            {
+                nearestTriangle(m.points[v], q);
+                maxOff = std::max(maxOff, std::sqrt(magSqr(q - m.points[v])));
+            }
+        }
+
+        coarse.boundary.push_back({b.v, d.regionSolid[r], r});
+    }
+
+    if (nOff)
+    {
+        throw FatalError
+        (
+            msg()
+                << "Netgen's coarse mesh of STL file \"" << fileName_
+                << "\" does not follow its feature edges: " << nOff
+                << " boundary face(s) have vertices on different surfaces"
+                << " (separated by edges sharper than " << featureAngle
+                << " degrees or between solids), or off the STL (largest"
+                << " distance of their vertices from the STL " << maxOff
+                << ", tolerance " << tol << ").\nTry a smaller maxCellSize"
+                << " (now " << parameters.maxCellSize << ")",
+            function
+        );
+    }
+
+    coarse.points = std::move(m.points);
+    coarse.tets = std::move(m.tets);
+    coarse.patchNames = d.surface.solidNames;
+
+    return coarse;
+}
+
+
+// ************************************************************************* //

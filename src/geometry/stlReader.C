@@ -1,0 +1,725 @@
+/*---------------------------------------------------------------------------*\
+  pmshFoam: reading and checking STL files (see stlReader.H).
+\*---------------------------------------------------------------------------*/
+
+#include "stlReader.H"
+#include "error.H"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <unordered_map>
+
+// * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
+
+namespace pmsh
+{
+namespace
+{
+
+std::string str(const point& p)
+{
+    std::ostringstream os;
+    os.precision(10);
+    os  << '(' << p[0] << ' ' << p[1] << ' ' << p[2] << ')';
+    return os.str();
+}
+
+
+//- Characters OpenFOAM does not accept in a word (a patch name).
+bool validWordChar(char c)
+{
+    return !std::isspace(static_cast<unsigned char>(c))
+        && c != '"' && c != '\'' && c != '/' && c != ';'
+        && c != '{' && c != '}' && c != '\\';
+}
+
+
+std::string sanitise(const std::string& name)
+{
+    std::string r;
+    for (char c : name)
+    {
+        if (validWordChar(c))
+        {
+            r += c;
+        }
+    }
+    return r;
+}
+
+
+//- Exact-coordinate key of a point: equal keys <=> equal coordinates
+//  (after +0.0 folds -0.0 into 0.0).
+struct pointKey
+{
+    std::uint64_t bits[3];
+
+    explicit pointKey(const point& p)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            const double x = p[k] + 0.0;
+            std::memcpy(&bits[k], &x, sizeof(double));
+        }
+    }
+
+    bool operator==(const pointKey& o) const
+    {
+        return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
+    }
+};
+
+
+struct pointKeyHash
+{
+    std::size_t operator()(const pointKey& k) const
+    {
+        std::uint64_t h = 0x9e3779b97f4a7c15ull;
+        for (std::uint64_t b : k.bits)
+        {
+            h ^= b + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+        }
+        return std::size_t(h);
+    }
+};
+
+
+//- Builds an stlSurface: merges points and names solids.
+class surfaceBuilder
+{
+    stlSurface& s_;
+    std::unordered_map<pointKey, label, pointKeyHash> pointIndex_;
+    std::string stem_;
+
+public:
+
+    surfaceBuilder(stlSurface& s, const std::string& stem)
+    :
+        s_(s),
+        stem_(stem)
+    {}
+
+    label addSolid(const std::string& rawName)
+    {
+        std::string name = sanitise(rawName);
+        if (name.empty())
+        {
+            name = stem_;
+        }
+        const auto it = std::find(s_.solidNames.begin(), s_.solidNames.end(), name);
+        if (it != s_.solidNames.end())
+        {
+            return label(it - s_.solidNames.begin());
+        }
+        s_.solidNames.push_back(name);
+        return label(s_.solidNames.size()) - 1;
+    }
+
+    label addPoint(const point& p)
+    {
+        const point q{p[0] + 0.0, p[1] + 0.0, p[2] + 0.0};
+        const auto ins = pointIndex_.emplace(pointKey(q), label(s_.points.size()));
+        if (ins.second)
+        {
+            s_.points.push_back(q);
+        }
+        return ins.first->second;
+    }
+
+    void addTriangle(const point& a, const point& b, const point& c, label solid)
+    {
+        s_.triangles.push_back({addPoint(a), addPoint(b), addPoint(c)});
+        s_.solid.push_back(solid);
+    }
+};
+
+
+//- A cursor over an ascii STL buffer that knows its line number.
+class asciiScanner
+{
+    const std::string& buf_;
+    const std::string& fileName_;
+    std::size_t pos_ = 0;
+    label line_ = 1;
+
+public:
+
+    asciiScanner(const std::string& buf, const std::string& fileName)
+    :
+        buf_(buf),
+        fileName_(fileName)
+    {}
+
+    void skipSpace()
+    {
+        while (pos_ < buf_.size() && std::isspace(static_cast<unsigned char>(buf_[pos_])))
+        {
+            if (buf_[pos_] == '\n')
+            {
+                ++line_;
+            }
+            ++pos_;
+        }
+    }
+
+    bool atEnd()
+    {
+        skipSpace();
+        return pos_ >= buf_.size();
+    }
+
+    std::string word()
+    {
+        skipSpace();
+        const std::size_t start = pos_;
+        while (pos_ < buf_.size() && !std::isspace(static_cast<unsigned char>(buf_[pos_])))
+        {
+            ++pos_;
+        }
+        return buf_.substr(start, pos_ - start);
+    }
+
+    //- The rest of the current line, trimmed (the solid name).
+    std::string restOfLine()
+    {
+        const std::size_t start = pos_;
+        while (pos_ < buf_.size() && buf_[pos_] != '\n')
+        {
+            ++pos_;
+        }
+        std::string r = buf_.substr(start, pos_ - start);
+        const auto b = r.find_first_not_of(" \t\r");
+        if (b == std::string::npos)
+        {
+            return "";
+        }
+        const auto e = r.find_last_not_of(" \t\r");
+        return r.substr(b, e - b + 1);
+    }
+
+    [[noreturn]] void error(const std::string& what) const
+    {
+        throw FatalError
+        (
+            msg()
+                << "Cannot read ascii STL file \"" << fileName_ << "\" at line "
+                << line_ << ": " << what,
+            "pmsh::readStl"
+        );
+    }
+
+    static bool same(const std::string& a, const char* b)
+    {
+        const std::size_t n = std::strlen(b);
+        if (a.size() != n)
+        {
+            return false;
+        }
+        for (std::size_t i = 0; i < n; ++i)
+        {
+            if (std::tolower(static_cast<unsigned char>(a[i])) != b[i])
+            {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    void expect(const char* keyword)
+    {
+        const std::string w = word();
+        if (!same(w, keyword))
+        {
+            error
+            (
+                std::string("expected '") + keyword + "', found '"
+              + (w.empty() ? std::string("end of file") : w) + "'"
+            );
+        }
+    }
+
+    double number()
+    {
+        std::string w = word();
+        const char* first = w.data();
+        const char* last = w.data() + w.size();
+        if (first != last && *first == '+')
+        {
+            ++first;
+        }
+        double x = 0;
+        const auto r = std::from_chars(first, last, x);
+        if (w.empty() || r.ec != std::errc() || r.ptr != last || !std::isfinite(x))
+        {
+            error("expected a number, found '" + (w.empty() ? std::string("end of file") : w) + "'");
+        }
+        return x;
+    }
+
+    point vertex()
+    {
+        expect("vertex");
+        point p;
+        p[0] = number();
+        p[1] = number();
+        p[2] = number();
+        return p;
+    }
+};
+
+
+void readAscii(const std::string& buf, const std::string& fileName, surfaceBuilder& b)
+{
+    asciiScanner scan(buf, fileName);
+    while (!scan.atEnd())
+    {
+        scan.expect("solid");
+        const label solid = b.addSolid(scan.restOfLine());
+        while (true)
+        {
+            if (scan.atEnd())
+            {
+                // A missing endsolid is common enough to forgive
+                return;
+            }
+            const std::string w = scan.word();
+            if (asciiScanner::same(w, "endsolid"))
+            {
+                scan.restOfLine();
+                break;
+            }
+            if (!asciiScanner::same(w, "facet"))
+            {
+                scan.error("expected 'facet' or 'endsolid', found '" + w + "'");
+            }
+            // The normal is ignored: orientation is the vertex order
+            scan.expect("normal");
+            scan.number();
+            scan.number();
+            scan.number();
+            scan.expect("outer");
+            scan.expect("loop");
+            const point p0 = scan.vertex();
+            const point p1 = scan.vertex();
+            const point p2 = scan.vertex();
+            const std::string e = scan.word();
+            if (asciiScanner::same(e, "vertex"))
+            {
+                scan.error("facet with more than 3 vertices (STL facets are triangles)");
+            }
+            if (!asciiScanner::same(e, "endloop"))
+            {
+                scan.error("expected 'endloop', found '" + e + "'");
+            }
+            scan.expect("endfacet");
+            b.addTriangle(p0, p1, p2, solid);
+        }
+    }
+}
+
+
+void readBinary
+(
+    const std::string& buf,
+    const std::string& fileName,
+    std::uint32_t n,
+    surfaceBuilder& b
+)
+{
+    const label solid = b.addSolid("");
+    for (std::uint32_t i = 0; i < n; ++i)
+    {
+        // 12 little-endian floats (normal, 3 vertices) and a 2-byte attribute
+        const char* rec = buf.data() + 84 + 50*std::size_t(i);
+        float f[12];
+        std::memcpy(f, rec, sizeof(f));
+        point p[3];
+        for (int k = 0; k < 3; ++k)
+        {
+            for (int j = 0; j < 3; ++j)
+            {
+                p[k][j] = double(f[3 + 3*k + j]);
+                if (!std::isfinite(p[k][j]))
+                {
+                    throw FatalError
+                    (
+                        msg()
+                            << "Binary STL file \"" << fileName << "\": triangle "
+                            << i << " has a coordinate that is not a finite number",
+                        "pmsh::readStl"
+                    );
+                }
+            }
+        }
+        b.addTriangle(p[0], p[1], p[2], solid);
+    }
+}
+
+
+//- Whether the buffer is plain text starting with "solid".
+bool looksAscii(const std::string& buf)
+{
+    const std::size_t b = buf.find_first_not_of(" \t\r\n");
+    if (b == std::string::npos || buf.compare(b, 5, "solid") != 0)
+    {
+        return false;
+    }
+    for (char c : buf)
+    {
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (u >= 0x7f || (u < 0x20 && !std::isspace(u)))
+        {
+            return false;
+        }
+    }
+    return true;
+}
+
+
+std::string edgeString(const stlSurface& s, label a, label b)
+{
+    return str(s.points[a]) + "-" + str(s.points[b]);
+}
+
+} // End anonymous namespace
+} // End namespace pmsh
+
+
+// * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * * //
+
+std::string pmsh::fileStem(const std::string& fileName)
+{
+    const std::size_t slash = fileName.find_last_of('/');
+    std::string name =
+        slash == std::string::npos ? fileName : fileName.substr(slash + 1);
+    const std::size_t dot = name.find_last_of('.');
+    if (dot != std::string::npos && dot > 0)
+    {
+        name = name.substr(0, dot);
+    }
+    return name;
+}
+
+
+pmsh::stlSurface pmsh::readStl(const std::string& fileName)
+{
+    const char* function = "pmsh::readStl";
+
+    std::ifstream is(fileName, std::ios::binary);
+    if (!is.good())
+    {
+        throw FatalError
+        (
+            msg() << "Cannot open STL file \"" << fileName << '"',
+            function
+        );
+    }
+    std::string buf
+    (
+        (std::istreambuf_iterator<char>(is)),
+        std::istreambuf_iterator<char>()
+    );
+
+    if (buf.empty())
+    {
+        throw FatalError
+        (
+            msg() << "STL file \"" << fileName << "\" is empty",
+            function
+        );
+    }
+
+    std::string stem = sanitise(fileStem(fileName));
+    if (stem.empty())
+    {
+        stem = "stl";
+    }
+
+    stlSurface s;
+    surfaceBuilder builder(s, stem);
+
+    const bool ascii = looksAscii(buf);
+    std::uint32_t n = 0;
+    if (buf.size() >= 84)
+    {
+        std::memcpy(&n, buf.data() + 80, 4);
+    }
+    const std::size_t binarySize = 84 + 50*std::size_t(n);
+
+    if (!ascii && buf.size() >= 84 && buf.size() == binarySize)
+    {
+        s.binary = true;
+        readBinary(buf, fileName, n, builder);
+    }
+    else if (ascii)
+    {
+        readAscii(buf, fileName, builder);
+    }
+    else if (buf.size() < 84)
+    {
+        throw FatalError
+        (
+            msg()
+                << "STL file \"" << fileName << "\" is neither ascii STL (text"
+                << " starting with 'solid') nor binary STL: " << buf.size()
+                << " bytes, less than the 84-byte binary header (truncated?)",
+            function
+        );
+    }
+    else if (buf.size() < binarySize)
+    {
+        throw FatalError
+        (
+            msg()
+                << "Binary STL file \"" << fileName << "\" is truncated: its"
+                << " header announces " << n << " triangles (" << binarySize
+                << " bytes) but the file has " << buf.size() << " bytes",
+            function
+        );
+    }
+    else
+    {
+        throw FatalError
+        (
+            msg()
+                << "STL file \"" << fileName << "\" is neither ascii STL (text"
+                << " starting with 'solid') nor binary STL: its header"
+                << " announces " << n << " triangles (" << binarySize
+                << " bytes) but the file has " << buf.size() << " bytes",
+            function
+        );
+    }
+
+    if (s.triangles.empty())
+    {
+        throw FatalError
+        (
+            msg()
+                << "STL file \"" << fileName << "\" is empty: it contains no"
+                << " triangles",
+            function
+        );
+    }
+
+    // Solids without triangles (e.g. an empty ascii solid) are not patches
+    std::vector<label> used(s.solidNames.size(), 0);
+    for (label so : s.solid)
+    {
+        used[so] = 1;
+    }
+    if (std::find(used.begin(), used.end(), 0) != used.end())
+    {
+        std::vector<label> newIndex(used.size(), -1);
+        std::vector<std::string> names;
+        for (std::size_t i = 0; i < used.size(); ++i)
+        {
+            if (used[i])
+            {
+                newIndex[i] = label(names.size());
+                names.push_back(s.solidNames[i]);
+            }
+        }
+        for (label& so : s.solid)
+        {
+            so = newIndex[so];
+        }
+        s.solidNames = names;
+    }
+
+    return s;
+}
+
+
+double pmsh::enclosedVolume(const stlSurface& s)
+{
+    // About a point near the surface, for accuracy far from the origin
+    const point o = s.points.empty() ? point{0, 0, 0} : s.points[0];
+    double v6 = 0;
+    for (const triFace& f : s.triangles)
+    {
+        v6 += tetVolume6(o, s.points[f[0]], s.points[f[1]], s.points[f[2]]);
+    }
+    return v6/6;
+}
+
+
+void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
+{
+    const char* function = "pmsh::checkStl";
+    const label nt = s.nTriangles();
+
+    // Degenerate triangles: repeated vertices or (numerically) zero area,
+    // relative to the triangle's longest edge
+    {
+        label nBad = 0;
+        label first = -1;
+        for (label t = 0; t < nt; ++t)
+        {
+            const triFace& f = s.triangles[t];
+            double l2 = 0;
+            for (int k = 0; k < 3; ++k)
+            {
+                l2 = std::max(l2, magSqr(s.points[f[(k + 1) % 3]] - s.points[f[k]]));
+            }
+            const double a2 = magSqr(s.areaNormal(t));
+            if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] || !(a2 > 1e-24*l2*l2))
+            {
+                if (first < 0)
+                {
+                    first = t;
+                }
+                ++nBad;
+            }
+        }
+        if (nBad)
+        {
+            const triFace& f = s.triangles[first];
+            throw FatalError
+            (
+                msg()
+                    << "STL file \"" << fileName << "\" has " << nBad
+                    << " degenerate (zero-area) triangle(s), e.g. triangle "
+                    << first << " of solid " << s.solidNames[s.solid[first]]
+                    << ": " << str(s.points[f[0]]) << ' ' << str(s.points[f[1]])
+                    << ' ' << str(s.points[f[2]]) << ".\nRemove them (or"
+                    << " repair the surface) before meshing",
+                function
+            );
+        }
+    }
+
+    // Edge uses: sort directed edges by their undirected key
+    struct edgeUse
+    {
+        label lo, hi;
+        bool forward;   // lo -> hi
+    };
+    std::vector<edgeUse> uses;
+    uses.reserve(3*std::size_t(nt));
+    for (const triFace& f : s.triangles)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            const label a = f[k];
+            const label b = f[(k + 1) % 3];
+            uses.push_back({std::min(a, b), std::max(a, b), a < b});
+        }
+    }
+    std::sort
+    (
+        uses.begin(), uses.end(),
+        [](const edgeUse& x, const edgeUse& y)
+        {
+            return x.lo != y.lo ? x.lo < y.lo
+                 : x.hi != y.hi ? x.hi < y.hi
+                 : x.forward < y.forward;
+        }
+    );
+
+    label nOpen = 0, nNonManifold = 0, nFlipped = 0;
+    std::string openEdge, nonManifoldEdge, flippedEdge;
+    for (std::size_t i = 0; i < uses.size(); )
+    {
+        std::size_t j = i;
+        int nForward = 0;
+        while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi)
+        {
+            nForward += uses[j].forward;
+            ++j;
+        }
+        const std::size_t n = j - i;
+        if (n == 1)
+        {
+            if (!nOpen++)
+            {
+                openEdge = edgeString(s, uses[i].lo, uses[i].hi);
+            }
+        }
+        else if (n > 2)
+        {
+            if (!nNonManifold++)
+            {
+                nonManifoldEdge = edgeString(s, uses[i].lo, uses[i].hi);
+            }
+        }
+        else if (nForward != 1)
+        {
+            if (!nFlipped++)
+            {
+                flippedEdge = edgeString(s, uses[i].lo, uses[i].hi);
+            }
+        }
+        i = j;
+    }
+
+    if (nNonManifold)
+    {
+        throw FatalError
+        (
+            msg()
+                << "STL file \"" << fileName << "\" is not manifold: "
+                << nNonManifold << " edge(s) are used by more than two"
+                << " triangles, e.g. the edge " << nonManifoldEdge
+                << ".\nEvery edge of a closed surface must be shared by"
+                << " exactly two triangles",
+            function
+        );
+    }
+    if (nOpen)
+    {
+        throw FatalError
+        (
+            msg()
+                << "STL file \"" << fileName << "\" is not closed: " << nOpen
+                << " edge(s) are used by only one triangle, e.g. the edge "
+                << openEdge << ".\nThe surface must enclose a volume: fill"
+                << " the holes (vertices of neighbouring triangles must match"
+                << " exactly)",
+            function
+        );
+    }
+    if (nFlipped)
+    {
+        throw FatalError
+        (
+            msg()
+                << "STL file \"" << fileName << "\" is inconsistently"
+                << " oriented: " << nFlipped << " edge(s) are traversed in the"
+                << " same direction by both their triangles (one of the two"
+                << " normals is flipped), e.g. the edge " << flippedEdge
+                << ".\nOrient all triangles consistently (normals outward)",
+            function
+        );
+    }
+
+    const double v = enclosedVolume(s);
+    if (v < 0)
+    {
+        throw FatalError
+        (
+            msg()
+                << "STL file \"" << fileName << "\" is oriented inward: the"
+                << " volume it encloses is negative (" << v << ").\nIts"
+                << " triangle normals point into the solid: flip the normals"
+                << " (reverse the vertex order of every triangle)",
+            function
+        );
+    }
+    if (!(v > 0))
+    {
+        throw FatalError
+        (
+            msg()
+                << "STL file \"" << fileName << "\" encloses no volume",
+            function
+        );
+    }
+}
+
+
+// ************************************************************************* //

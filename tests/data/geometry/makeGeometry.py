@@ -1,0 +1,142 @@
+#!/usr/bin/env python3
+"""Generate the STL test inputs of pmshFoam's geometry tests (run once;
+the outputs are committed). Broken variants are made by the tests
+themselves, in a temporary directory.
+
+  sphere.stl        icosphere (3 subdivisions, 1280 triangles), radius 1,
+                    outward, ascii, one solid "sphere"
+  sphereBinary.stl  the same triangles, binary
+  box.stl           box [0,2]x[0,1]x[0,1], faces split 2x2, ascii, two
+                    solids: "inlet" (x = 0) and "walls" (the rest)
+
+Coordinates are float32 values (written exactly in ascii), so the ascii and
+binary spheres hold bit-identical points."""
+
+import math
+import struct
+
+
+def f32(x):
+    return struct.unpack('<f', struct.pack('<f', x))[0]
+
+
+def icosphere(levels):
+    t = (1 + math.sqrt(5)) / 2
+    v = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0),
+         (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
+         (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    f = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11),
+         (1, 5, 9), (5, 11, 4), (11, 10, 2), (10, 7, 6), (7, 1, 8),
+         (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9),
+         (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+
+    def unit(p):
+        r = math.sqrt(sum(c * c for c in p))
+        return tuple(c / r for c in p)
+
+    v = [unit(p) for p in v]
+    for _ in range(levels):
+        mid = {}
+
+        def m(a, b):
+            key = (min(a, b), max(a, b))
+            if key not in mid:
+                mid[key] = len(v)
+                v.append(unit(tuple((v[a][k] + v[b][k]) / 2 for k in range(3))))
+            return mid[key]
+
+        nf = []
+        for a, b, c in f:
+            ab, bc, ca = m(a, b), m(b, c), m(c, a)
+            nf += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        f = nf
+    v = [tuple(f32(c) for c in p) for p in v]
+    return v, f
+
+
+def volume(v, f):
+    s = 0
+    for a, b, c in f:
+        pa, pb, pc = v[a], v[b], v[c]
+        s += (pa[0] * (pb[1] * pc[2] - pb[2] * pc[1])
+              - pa[1] * (pb[0] * pc[2] - pb[2] * pc[0])
+              + pa[2] * (pb[0] * pc[1] - pb[1] * pc[0]))
+    return s / 6
+
+
+def normal(pa, pb, pc):
+    u = [pb[k] - pa[k] for k in range(3)]
+    w = [pc[k] - pa[k] for k in range(3)]
+    n = (u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0])
+    r = math.sqrt(sum(c * c for c in n))
+    return tuple(c / r for c in n)
+
+
+def write_ascii(name, solids):
+    """solids: list of (solid name, points, triangles)"""
+    with open(name, 'w') as out:
+        for sname, v, f in solids:
+            out.write('solid %s\n' % sname)
+            for a, b, c in f:
+                n = normal(v[a], v[b], v[c])
+                out.write('  facet normal %r %r %r\n    outer loop\n' % n)
+                for p in (v[a], v[b], v[c]):
+                    out.write('      vertex %r %r %r\n' % p)
+                out.write('    endloop\n  endfacet\n')
+            out.write('endsolid %s\n' % sname)
+
+
+def write_binary(name, v, f):
+    with open(name, 'wb') as out:
+        out.write(b'pmshFoam test sphere (binary STL)'.ljust(80, b' '))
+        out.write(struct.pack('<I', len(f)))
+        for a, b, c in f:
+            n = normal(v[a], v[b], v[c])
+            out.write(struct.pack('<12fH', *n, *v[a], *v[b], *v[c], 0))
+
+
+def box(nx, ny, nz, lx, ly, lz):
+    """Faces of [0,lx]x[0,ly]x[0,lz] split n x n, outward, tagged by side."""
+    pts = {}
+    tris = []
+
+    def pid(p):
+        p = tuple(f32(c) for c in p)
+        if p not in pts:
+            pts[p] = len(pts)
+        return pts[p]
+
+    def quad_grid(origin, du, dv, nu, nv, tag):
+        for i in range(nu):
+            for j in range(nv):
+                def P(a, b):
+                    return tuple(origin[k] + du[k] * a / nu + dv[k] * b / nv for k in range(3))
+                p00, p10, p11, p01 = P(i, j), P(i + 1, j), P(i + 1, j + 1), P(i, j + 1)
+                tris.append((tag, (pid(p00), pid(p10), pid(p11))))
+                tris.append((tag, (pid(p00), pid(p11), pid(p01))))
+
+    # du x dv points outward on every face
+    quad_grid((0, 0, 0), (0, 0, lz), (0, ly, 0), nz, ny, 'inlet')     # x = 0, normal -x
+    quad_grid((lx, 0, 0), (0, ly, 0), (0, 0, lz), ny, nz, 'walls')    # x = lx, +x
+    quad_grid((0, 0, 0), (lx, 0, 0), (0, 0, lz), nx, nz, 'walls')     # y = 0, -y
+    quad_grid((0, ly, 0), (0, 0, lz), (lx, 0, 0), nz, nx, 'walls')    # y = ly, +y
+    quad_grid((0, 0, 0), (0, ly, 0), (lx, 0, 0), ny, nx, 'walls')     # z = 0, -z
+    quad_grid((0, 0, lz), (lx, 0, 0), (0, ly, 0), nx, ny, 'walls')    # z = lz, +z
+    v = [None] * len(pts)
+    for p, i in pts.items():
+        v[i] = p
+    return v, tris
+
+
+if __name__ == '__main__':
+    v, f = icosphere(3)
+    assert volume(v, f) > 0
+    write_ascii('sphere.stl', [('sphere', v, f)])
+    write_binary('sphereBinary.stl', v, f)
+
+    v, tagged = box(2, 2, 2, 2.0, 1.0, 1.0)
+    assert volume(v, [t for _, t in tagged]) > 0
+    write_ascii('box.stl', [
+        ('inlet', v, [t for tag, t in tagged if tag == 'inlet']),
+        ('walls', v, [t for tag, t in tagged if tag == 'walls']),
+    ])
