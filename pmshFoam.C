@@ -103,7 +103,7 @@ int main(int argc, char* argv[])
 
         stageLog stages(comm);
 
-        stages.begin("Stage 1: coarse mesh (Netgen) of " + settings.geometryFile);
+        stages.begin("coarse", "Stage 1: coarse mesh (Netgen) of " + settings.geometryFile);
         const CoarseMesh coarse = generateCoarseMesh
         (
             comm, *geometry, {settings.maxCellSize, settings.grading}
@@ -117,13 +117,14 @@ int main(int argc, char* argv[])
         });
         stages.end();
 
-        stages.begin("Stage 2: partition into " + std::to_string(comm.size()) + " parts");
+        stages.begin("partition", "Stage 2: partition into " + std::to_string(comm.size()) + " parts");
         const std::vector<label> cellPart = partitionCoarseMesh(comm, coarse);
         logPartSizes(comm, cellPart);
         stages.end();
 
         stages.begin
         (
+            "surface",
             "Stage 3: surface refinement, "
           + std::to_string(settings.refinementLevels) + " levels, with projection"
         );
@@ -145,7 +146,7 @@ int main(int argc, char* argv[])
         logSurfaceSizes(comm, surface);
         stages.end();
 
-        stages.begin("Stage 4: volume meshing (" + mesher->name() + ")");
+        stages.begin("volume", "Stage 4: volume meshing (" + mesher->name() + ")");
         TetMesh tets;
         failTogether(comm, [&]
         {
@@ -158,14 +159,14 @@ int main(int argc, char* argv[])
         const globalLabel nFineCells = logCellCounts(comm, tets);
         stages.end();
 
-        stages.begin("Stage 5: global point numbering");
+        stages.begin("numbering", "Stage 5: global point numbering");
         const globalPointNumbering numbering
         (
             comm, coarse, cellPart, surface, label(tets.points.size())
         );
         stages.end();
 
-        stages.begin("Stage 6: writing " + std::string(output.binary ? "binary" : "ascii"));
+        stages.begin("write", "Stage 6: writing " + std::string(output.binary ? "binary" : "ascii"));
         PolyMesh mesh;
         failTogether(comm, [&]
         {
@@ -202,7 +203,11 @@ int main(int argc, char* argv[])
         logWritten(comm, args.caseDir(), mesh);
         stages.end();
 
-        logSummary(comm, coarse, nFineCells, stages);
+        reportSummary
+        (
+            comm, args.caseDir(), settings, coarse,
+            label(tets.tets.size()), nFineCells, stages
+        );
     }
     catch (const collectiveFailure& e)
     {

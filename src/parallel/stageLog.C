@@ -16,16 +16,31 @@ pmsh::stageLog::stageLog(const Communicator& comm)
 {}
 
 
-void pmsh::stageLog::begin(const std::string& name)
+void pmsh::stageLog::begin(const std::string& key, const std::string& title)
 {
-    name_ = name;
-    Info() << name << '\n';
+    key_ = key;
+    title_ = title;
+    Info() << title << '\n';
     timer_.restart();
+}
+
+
+double pmsh::stageLog::time(const std::string& key) const
+{
+    for (const stageTime& t : times_)
+    {
+        if (t.key == key)
+        {
+            return t.max;
+        }
+    }
+    return 0;
 }
 
 
 void pmsh::stageLog::end()
 {
+    const std::vector<double> perRank = comm_.allGather(timer_.elapsed());
     const minAvgMax t = reduceMinAvgMax(comm_, timer_.elapsed());
     Info() << std::fixed << std::setprecision(2);
     if (comm_.parallel())
@@ -39,5 +54,5 @@ void pmsh::stageLog::end()
         Info() << "    time: " << t.max << " s\n";
     }
     Info() << std::defaultfloat << std::setprecision(6) << '\n';
-    times_.emplace_back(name_, t.max);
+    times_.push_back({key_, title_, perRank, t.max});
 }

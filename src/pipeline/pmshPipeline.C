@@ -4,7 +4,10 @@
 #include "error.H"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <iomanip>
+#include <sstream>
 #include <ostream>
 
 std::string pmsh::rankPrefix(const Communicator& comm)
@@ -171,41 +174,6 @@ pmsh::globalLabel pmsh::logCellCounts(const Communicator& comm, const TetMesh& t
 }
 
 
-void pmsh::logSummary
-(
-    const Communicator& comm,
-    const CoarseMesh& coarse,
-    globalLabel nFineCells,
-    const stageLog& stages
-)
-{
-    const double total = stages.total();
-    const minAvgMax memory = reduceMinAvgMax(comm, peakMemoryBytes()/1048576.0);
-
-    Info()
-        << "Summary\n"
-        << "    ranks:        " << comm.size() << '\n'
-        << "    coarse cells: " << coarse.nCells() << '\n'
-        << "    fine cells:   " << nFineCells << '\n'
-        << std::fixed << std::setprecision(2);
-    for (const auto& [name, seconds] : stages.times())
-    {
-        Info() << "    " << std::left << std::setw(60) << name << ' '
-            << std::right << std::setw(9) << seconds << " s\n";
-    }
-    Info()
-        << "    total time:   " << total << " s\n"
-        << std::setprecision(0)
-        << "    fine cells/s per core: "
-        << (total > 0 ? nFineCells/total/comm.size() : 0) << '\n'
-        << std::setprecision(1)
-        << "    peak memory per rank (MiB) min/avg/max: "
-        << memory.min << " / " << memory.avg << " / " << memory.max << '\n'
-        << std::defaultfloat << std::setprecision(6)
-        << "\nEnd\n\n";
-}
-
-
 void pmsh::logWritten
 (
     const Communicator& comm,
@@ -232,4 +200,125 @@ void pmsh::logWritten
         Info() << "    faces: " << faces.max << ", points: " << points.max << '\n';
     }
     Info() << std::defaultfloat;
+}
+
+
+namespace
+{
+
+// A JSON array of numbers
+template<class T>
+std::string jsonArray(const std::vector<T>& values)
+{
+    std::ostringstream os;
+    os << std::setprecision(10) << '[';
+    for (std::size_t i = 0; i < values.size(); ++i)
+    {
+        os << (i ? ", " : "") << values[i];
+    }
+    os << ']';
+    return os.str();
+}
+
+// A JSON string (the values here hold no control characters)
+std::string jsonString(const std::string& s)
+{
+    std::string quoted = "\"";
+    for (char c : s)
+    {
+        if (c == '"' || c == '\\') quoted += '\\';
+        quoted += c;
+    }
+    return quoted + '"';
+}
+
+} // End anonymous namespace
+
+
+void pmsh::reportSummary
+(
+    const Communicator& comm,
+    const std::string& caseDir,
+    const meshSettings& settings,
+    const CoarseMesh& coarse,
+    label localFineCells,
+    globalLabel nFineCells,
+    const stageLog& stages
+)
+{
+    const double total = stages.total();
+    const std::vector<double> memory = comm.allGather(double(peakMemoryBytes()));
+    const std::vector<double> cellsPerRank = comm.allGather(double(localFineCells));
+    const minAvgMax memoryMiB = reduceMinAvgMax(comm, peakMemoryBytes()/1048576.0);
+
+    // The paper's split: the coarse mesh, then everything up to the fine
+    // mesh (writing excluded)
+    const double coarseTime = stages.time("coarse");
+    const double fineTime =
+        stages.time("partition") + stages.time("surface")
+      + stages.time("volume") + stages.time("numbering");
+    const double perCore =
+        fineTime > 0 ? nFineCells/fineTime/comm.size() : 0;
+    double memorySum = 0;
+    for (double m : memory) memorySum += m;
+
+    Info()
+        << "Summary\n"
+        << "    ranks:        " << comm.size() << '\n'
+        << "    coarse cells: " << coarse.nCells() << '\n'
+        << "    fine cells:   " << nFineCells << '\n'
+        << std::fixed << std::setprecision(2);
+    for (const stageLog::stageTime& t : stages.times())
+    {
+        Info() << "    " << std::left << std::setw(12) << t.key
+            << std::right << std::setw(9) << t.max << " s\n";
+    }
+    Info()
+        << "    total time:   " << total << " s\n"
+        << std::setprecision(0)
+        << "    fine cells/s per core (stages 2-5): " << perCore << '\n'
+        << std::setprecision(1)
+        << "    peak memory per rank (MiB) min/avg/max: "
+        << memoryMiB.min << " / " << memoryMiB.avg << " / " << memoryMiB.max << '\n'
+        << "    bytes per fine cell (all ranks): "
+        << (nFineCells > 0 ? memorySum/nFineCells : 0) << '\n'
+        << std::defaultfloat << std::setprecision(6)
+        << "\nEnd\n\n";
+
+    if (!comm.master())
+    {
+        return;
+    }
+    const std::string dir = caseDir + "/postProcessing/pmshFoam";
+    std::filesystem::create_directories(dir);
+    std::ofstream os(dir + "/summary.json");
+    os  << std::setprecision(10)
+        << "{\n"
+        << "  \"application\": \"pmshFoam\",\n"
+        << "  \"ranks\": " << comm.size() << ",\n"
+        << "  \"geometry\": " << jsonString(settings.geometryFile) << ",\n"
+        << "  \"maxCellSize\": " << settings.maxCellSize << ",\n"
+        << "  \"grading\": " << settings.grading << ",\n"
+        << "  \"refinementLevels\": " << settings.refinementLevels << ",\n"
+        << "  \"volumeMesher\": " << jsonString(settings.volumeMesher) << ",\n"
+        << "  \"coarseCells\": " << coarse.nCells() << ",\n"
+        << "  \"fineCells\": " << nFineCells << ",\n"
+        << "  \"fineCellsPerRank\": " << jsonArray(cellsPerRank) << ",\n"
+        << "  \"stages\": {\n";
+    const auto& times = stages.times();
+    for (std::size_t i = 0; i < times.size(); ++i)
+    {
+        os  << "    " << jsonString(times[i].key) << ": {\"seconds\": " << times[i].max
+            << ", \"secondsPerRank\": " << jsonArray(times[i].perRank) << "}"
+            << (i + 1 < times.size() ? ",\n" : "\n");
+    }
+    os  << "  },\n"
+        << "  \"coarseTime\": " << coarseTime << ",\n"
+        << "  \"fineTime\": " << fineTime << ",\n"
+        << "  \"writeTime\": " << stages.time("write") << ",\n"
+        << "  \"totalTime\": " << total << ",\n"
+        << "  \"fineCellsPerSecondPerCore\": " << perCore << ",\n"
+        << "  \"peakMemoryPerRankBytes\": " << jsonArray(memory) << ",\n"
+        << "  \"bytesPerFineCell\": " << (nFineCells > 0 ? memorySum/nFineCells : 0) << "\n"
+        << "}\n";
 }
