@@ -3,69 +3,21 @@
 \*---------------------------------------------------------------------------*/
 
 #include "dictionary.H"
-#include "error.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <functional>
 #include <sstream>
 
 using namespace pmsh;
+using namespace pmsh::test;
 namespace fs = std::filesystem;
 
 namespace
 {
 
 const std::string dataDir = std::string(PMSH_TEST_DATA) + "/io";
-
-//- The FatalError message of f(), or "" if it did not throw.
-std::string errorOf(const std::function<void()>& f)
-{
-    try
-    {
-        f();
-    }
-    catch (const FatalError& e)
-    {
-        return e.message();
-    }
-    return "";
-}
-
-//- Set an environment variable for the lifetime of the object.
-class scopedEnv
-{
-    std::string name_;
-    bool had_;
-    std::string old_;
-public:
-    scopedEnv(const std::string& name, const char* value)
-    :
-        name_(name),
-        had_(std::getenv(name.c_str()) != nullptr),
-        old_(had_ ? std::getenv(name.c_str()) : "")
-    {
-        if (value) ::setenv(name.c_str(), value, 1);
-        else ::unsetenv(name.c_str());
-    }
-    ~scopedEnv()
-    {
-        if (had_) ::setenv(name_.c_str(), old_.c_str(), 1);
-        else ::unsetenv(name_.c_str());
-    }
-};
-
-//- A fresh directory under the gtest temporary directory.
-std::string makeTempDir()
-{
-    std::string pattern = ::testing::TempDir() + "pmshDictXXXXXX";
-    char* dir = ::mkdtemp(&pattern[0]);
-    EXPECT_NE(dir, nullptr);
-    return pattern;
-}
 
 std::string written(const dictionary& d)
 {
@@ -645,22 +597,18 @@ TEST(dictionaryWrite, writeFileIsReadableByOpenFOAM)
     {
         GTEST_SKIP() << "OpenFOAM's foamDictionary is not installed";
     }
-    const std::string dir = makeTempDir();
+    const tempDir dir("dict");
     dictionary d = dictionary::read(dataDir + "/allSyntax");
     d.set("numberOfSubdomains", 5);
-    d.writeFile(dir + "/system/written");
+    d.writeFile(dir/"system/written");
 
-    const std::string out = dir + "/out";
-    const std::string cmd =
-        "WM_PROJECT_DIR=/usr/share/openfoam foamDictionary -entry"
-        " numberOfSubdomains -value " + dir + "/system/written > " + out
-      + " 2>&1 && WM_PROJECT_DIR=/usr/share/openfoam foamDictionary -entry"
-        " outer/inner/value -value " + dir + "/system/written >> " + out + " 2>&1";
-    const int rc = std::system(cmd.c_str());
-    std::ifstream is(out);
-    std::stringstream ss;
-    ss << is.rdbuf();
-    EXPECT_EQ(rc, 0) << ss.str();
-    EXPECT_EQ(ss.str(), "5\n12\n");
-    fs::remove_all(dir);
+    auto valueOf = [&](const std::string& key)
+    {
+        return runFoam("foamDictionary -entry " + key + " -value " + (dir/"system/written"));
+    };
+    const auto [subdomains, rc1] = valueOf("numberOfSubdomains");
+    const auto [value, rc2] = valueOf("outer/inner/value");
+    EXPECT_EQ(rc1, 0) << subdomains;
+    EXPECT_EQ(rc2, 0) << value;
+    EXPECT_EQ(subdomains + value, "5\n12\n");
 }

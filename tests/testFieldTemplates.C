@@ -4,75 +4,21 @@
 \*---------------------------------------------------------------------------*/
 
 #include "fieldTemplates.H"
-#include "error.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <functional>
-#include <sstream>
-
-#include <unistd.h>
 
 using namespace pmsh;
+using namespace pmsh::test;
 namespace fs = std::filesystem;
 
 namespace
 {
 
 const std::string dataDir = std::string(PMSH_TEST_DATA) + "/io";
-
-std::string errorOf(const std::function<void()>& f)
-{
-    try
-    {
-        f();
-    }
-    catch (const FatalError& e)
-    {
-        return e.message();
-    }
-    return "";
-}
-
-class scopedEnv
-{
-    std::string name_;
-    bool had_;
-    std::string old_;
-public:
-    scopedEnv(const std::string& name, const char* value)
-    :
-        name_(name),
-        had_(std::getenv(name.c_str()) != nullptr),
-        old_(had_ ? std::getenv(name.c_str()) : "")
-    {
-        if (value) ::setenv(name.c_str(), value, 1);
-        else ::unsetenv(name.c_str());
-    }
-    ~scopedEnv()
-    {
-        if (had_) ::setenv(name_.c_str(), old_.c_str(), 1);
-        else ::unsetenv(name_.c_str());
-    }
-};
-
-void writeFile(const std::string& path, const std::string& text)
-{
-    fs::create_directories(fs::path(path).parent_path());
-    std::ofstream(path) << text;
-}
-
-std::string readFile(const std::string& path)
-{
-    std::ifstream is(path);
-    std::stringstream ss;
-    ss << is.rdbuf();
-    return ss.str();
-}
 
 //- Text without blanks and newlines: OpenFOAM writes "( 1 0 0 )" where we
 //  write "(1 0 0)", and lays out dictionaries its own way.
@@ -86,18 +32,11 @@ std::string noBlanks(std::string s)
     return s;
 }
 
-#define EXPECT_HAS(text, piece) \
-    EXPECT_NE(std::string(text).find(piece), std::string::npos) \
-        << "missing: " << (piece) << "\nin:\n" << (text)
-
-//- Run an OpenFOAM command; its output, or "" (and a failure) on error.
-std::string runOpenFOAM(const std::string& command, const std::string& outFile)
+//- Run an OpenFOAM command; its output (and a failure if it fails).
+std::string runOpenFOAM(const std::string& command)
 {
-    const std::string cmd =
-        "WM_PROJECT_DIR=/usr/share/openfoam " + command + " > " + outFile + " 2>&1";
-    const int rc = std::system(cmd.c_str());
-    const std::string out = readFile(outFile);
-    EXPECT_EQ(rc, 0) << command << "\n" << out;
+    const auto [out, status] = runFoam(command);
+    EXPECT_EQ(status, 0) << command << "\n" << out;
     return out;
 }
 
@@ -109,23 +48,13 @@ class fieldCase
 {
 protected:
 
-    std::string dir;
-    std::unique_ptr<scopedEnv> etc;
+    const tempDir tmp{"fields"};
+    const std::string dir = tmp.path();
+    const scopedEnv etc{"WM_PROJECT_DIR", (dataDir + "/fakeOpenFOAM").c_str()};
 
     void SetUp() override
     {
-        std::string pattern = ::testing::TempDir() + "pmshFieldsXXXXXX";
-        ASSERT_NE(::mkdtemp(&pattern[0]), nullptr);
-        dir = pattern;
         fs::copy(dataDir + "/fieldCase", dir, fs::copy_options::recursive);
-        etc.reset(new scopedEnv("WM_PROJECT_DIR", (dataDir + "/fakeOpenFOAM").c_str()));
-    }
-
-    void TearDown() override
-    {
-        etc.reset();
-        std::error_code ec;
-        fs::remove_all(dir, ec);
     }
 
     const fieldTemplate& field(const std::vector<fieldTemplate>& fields, const std::string& name)
@@ -199,9 +128,8 @@ TEST(fieldTemplate, nonuniformInternalFieldIsAnError)
 
 TEST(fieldTemplate, internalAndBoundaryValuesMustBeUniform)
 {
-    std::string pattern = ::testing::TempDir() + "pmshFieldXXXXXX";
-    ASSERT_NE(::mkdtemp(&pattern[0]), nullptr);
-    const std::string dir = pattern;
+    const tempDir tmp("field");
+    const std::string dir = tmp.path();
     const std::string head =
         "FoamFile { version 2.0; format ascii; class volScalarField; object T; }\n";
 
@@ -230,8 +158,6 @@ TEST(fieldTemplate, internalAndBoundaryValuesMustBeUniform)
     EXPECT_HAS(err, dir + "/T\" line 5");
     EXPECT_HAS(err, "entry 'value'");
     EXPECT_HAS(err, "only maps uniform values");
-
-    fs::remove_all(dir);
 }
 
 
@@ -420,14 +346,13 @@ TEST_F(fieldCase, processorFieldIsReadableByOpenFOAM)
     writeProcessorField(field(fields, "U"), out, patches());
 
     // foamDictionary -expand resolves #includeEtc (the real one) and $vars
-    const std::string log = dir + "/log.foamDictionary";
     EXPECT_EQ
     (
-        noBlanks(runOpenFOAM("foamDictionary -entry boundaryField/procBoundary0to2/value -value " + out, log)),
+        noBlanks(runOpenFOAM("foamDictionary -entry boundaryField/procBoundary0to2/value -value " + out)),
         "uniform(100)"
     );
     const std::string expanded =
-        noBlanks(runOpenFOAM("foamDictionary -expand " + out, log));
+        noBlanks(runOpenFOAM("foamDictionary -expand " + out));
     EXPECT_HAS(expanded, "internalFielduniform(100);");
     EXPECT_HAS(expanded, "procBoundary0to1{typeprocessor;valueuniform(100);}");
     EXPECT_HAS(expanded, "symmetryPlane{typesymmetryPlane;}");
@@ -452,8 +377,7 @@ TEST_F(fieldCase, decomposeParDictIsCreated)
             runOpenFOAM
             (
                 "foamDictionary -entry numberOfSubdomains -value "
-              + dir + "/system/decomposeParDict",
-                dir + "/log"
+              + dir + "/system/decomposeParDict"
             ),
             "4\n"
         );

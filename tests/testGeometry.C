@@ -5,89 +5,27 @@
 #include "csgGeometry.H"
 #include "stlGeometry.H"
 #include "stlReader.H"
-#include "error.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <random>
 #include <set>
 #include <sstream>
-#include <unistd.h>
 
 using namespace pmsh;
+using namespace pmsh::test;
 
 namespace
 {
 
 const std::string dataDir = std::string(PMSH_TEST_DATA) + "/geometry/";
-
-
-//- A scratch directory removed at the end of the test.
-class tempDir
-{
-    std::string path_;
-public:
-    tempDir()
-    {
-        char tmpl[] = "/tmp/pmshTestGeometryXXXXXX";
-        path_ = mkdtemp(tmpl);
-    }
-    ~tempDir()
-    {
-        std::string cmd = "rm -rf '" + path_ + "'";
-        if (std::system(cmd.c_str())) {}
-    }
-    std::string file(const std::string& name, const std::string& content) const
-    {
-        const std::string f = path_ + "/" + name;
-        std::ofstream os(f, std::ios::binary);
-        os  << content;
-        return f;
-    }
-};
-
-
-std::string readFile(const std::string& name)
-{
-    std::ifstream is(name, std::ios::binary);
-    return std::string
-    (
-        (std::istreambuf_iterator<char>(is)), std::istreambuf_iterator<char>()
-    );
-}
-
-
-//- The FatalError message of f(), "" if it does not throw one.
-template<class F>
-std::string fatalMessage(F f)
-{
-    try
-    {
-        f();
-    }
-    catch (const FatalError& e)
-    {
-        return e.message();
-    }
-    return "";
-}
-
-
-#define EXPECT_FATAL(expr, phrase)                                            \
-    {                                                                         \
-        const std::string m_ = fatalMessage([&]{ expr; });                    \
-        EXPECT_NE(m_.find(phrase), std::string::npos)                         \
-            << "expected a FatalError containing \"" << phrase                \
-            << "\", got \"" << m_ << "\"";                                    \
-    }
 
 
 //- Checks every coarse mesh must pass; returns the enclosed volume.
@@ -444,7 +382,7 @@ TEST(csgGeometry, shaftPatchesAndEdgeProjection)
 
 TEST(csgGeometry, bcNumbersWithoutNames)
 {
-    tempDir dir;
+    const tempDir dir("geometry");
     const std::string f = dir.file
     (
         "cube.geo",
@@ -464,7 +402,7 @@ TEST(csgGeometry, bcNumbersWithoutNames)
 
 TEST(csgGeometry, errors)
 {
-    tempDir dir;
+    const tempDir dir("geometry");
     EXPECT_FATAL(Geometry::New("/nonexistent/body.geo"), "Cannot open CSG geometry file \"/nonexistent/body.geo\"");
 
     const std::string noKeyword = dir.file("a.geo", "solid ball = sphere(0, 0, 0; 1);\ntlo ball;\n");
@@ -475,7 +413,7 @@ TEST(csgGeometry, errors)
         "b.geo",
         "algebraic3d\n# comment\nsolid ball = sphere(0, 0, 0; 1;\ntlo ball;\n"
     );
-    const std::string m = fatalMessage([&]{ Geometry::New(syntax); });
+    const std::string m = errorOf([&]{ Geometry::New(syntax); });
     EXPECT_NE(m.find("Cannot parse CSG geometry file \"" + syntax + "\""), std::string::npos) << m;
     EXPECT_NE(m.find("line 3"), std::string::npos) << m;
 
@@ -547,7 +485,7 @@ TEST(stlReader, asciiAndBinarySphereAreIdentical)
 
 TEST(stlReader, binaryHeaderStartingWithSolid)
 {
-    tempDir dir;
+    const tempDir dir("geometry");
     boxStl box;
     const std::string f = dir.file("cube.stl", box.binary("solid cube exported as binary"));
     const stlSurface s = readStl(f);
@@ -565,7 +503,7 @@ TEST(stlReader, multiSolidNames)
     EXPECT_NO_THROW(checkStl(s, "box.stl"));
 
     // An unnamed solid takes the file's stem; a repeated name is one patch
-    tempDir dir;
+    const tempDir dir("geometry");
     boxStl box;
     std::string text = box.ascii("");
     const std::string f = dir.file("myPart.stl", text);
@@ -583,7 +521,7 @@ TEST(stlReader, multiSolidNames)
 
 TEST(stlReader, inputErrors)
 {
-    tempDir dir;
+    const tempDir dir("geometry");
     boxStl box;
 
     EXPECT_FATAL(readStl(dir.file("empty.stl", "")), "is empty");
@@ -609,7 +547,7 @@ TEST(stlReader, inputErrors)
 
 TEST(stlReader, validationErrors)
 {
-    tempDir dir;
+    const tempDir dir("geometry");
 
     auto check = [&](const boxStl& b)
     {
@@ -645,7 +583,7 @@ TEST(stlReader, validationErrors)
         // All flipped: inward
         boxStl b;
         for (auto& f : b.t) std::swap(f[1], f[2]);
-        const std::string m = fatalMessage([&]{ check(b); });
+        const std::string m = errorOf([&]{ check(b); });
         EXPECT_NE(m.find("is oriented inward"), std::string::npos) << m;
         EXPECT_NE(m.find("flip the normals"), std::string::npos) << m;
     }
@@ -747,7 +685,7 @@ TEST(stlGeometry, coplanarSolidsKeepTheirBoundary)
     // Mesh another STL with feature edges first: nglib keeps the edges of
     // the last geometry in a global buffer that would spoil this one's
     Geometry::New(dataDir + "box.stl")->coarseMesh({0.5, 0.3});
-    tempDir dir;
+    const tempDir dir("geometry");
     const std::string f = dir.file("duct.stl", cubeWithInlet(4, 0.25, 0.75));
     auto g = Geometry::New(f);
     EXPECT_EQ(g->patchNames(), (std::vector<std::string>{"inlet", "walls"}));

@@ -4,8 +4,8 @@
 \*---------------------------------------------------------------------------*/
 
 #include "meshSettings.H"
-#include "error.H"
 #include "VolumeMesher.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
@@ -14,57 +14,13 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <functional>
-
-#include <unistd.h>
 
 using namespace pmsh;
+using namespace pmsh::test;
 namespace fs = std::filesystem;
 
 namespace
 {
-
-std::string errorOf(const std::function<void()>& f)
-{
-    try
-    {
-        f();
-    }
-    catch (const FatalError& e)
-    {
-        return e.message();
-    }
-    return "";
-}
-
-class scopedEnv
-{
-    std::string name_;
-    bool had_;
-    std::string old_;
-public:
-    scopedEnv(const std::string& name, const char* value)
-    :
-        name_(name),
-        had_(std::getenv(name.c_str()) != nullptr),
-        old_(had_ ? std::getenv(name.c_str()) : "")
-    {
-        if (value) ::setenv(name.c_str(), value, 1);
-        else ::unsetenv(name.c_str());
-    }
-    ~scopedEnv()
-    {
-        if (had_) ::setenv(name_.c_str(), old_.c_str(), 1);
-        else ::unsetenv(name_.c_str());
-    }
-};
-
-void writeFile(const std::string& path, const std::string& text)
-{
-    fs::create_directories(fs::path(path).parent_path());
-    std::ofstream(path) << text;
-}
 
 const char* const header =
     "FoamFile\n{\n    version 2.0;\n    format ascii;\n    class dictionary;\n"
@@ -77,23 +33,14 @@ class caseDir
 {
 protected:
 
-    std::string dir;
-    std::string dict;
+    const tempDir tmp{"case"};
+    const std::string dir = tmp.path();
+    const std::string dict = dir + "/system/pmshDict";
 
     void SetUp() override
     {
-        std::string pattern = ::testing::TempDir() + "pmshCaseXXXXXX";
-        ASSERT_NE(::mkdtemp(&pattern[0]), nullptr);
-        dir = pattern;
-        dict = dir + "/system/pmshDict";
         writeFile(dir + "/constant/geometry/body.stl", "solid body\nendsolid body\n");
         writeFile(dir + "/constant/geometry/Shape.GEO", "algebraic3d\n");
-    }
-
-    void TearDown() override
-    {
-        std::error_code ec;
-        fs::remove_all(dir, ec);
     }
 
     //- pmshDict = header (7 lines) + entries; the first entry is line 8.
@@ -114,10 +61,6 @@ protected:
         return "geometry \"constant/geometry/body.stl\";\nmaxCellSize 0.1;\n";
     }
 };
-
-#define EXPECT_HAS(text, piece) \
-    EXPECT_NE(std::string(text).find(piece), std::string::npos) \
-        << "missing: " << (piece) << "\nin:\n" << (text)
 
 } // End anonymous namespace
 

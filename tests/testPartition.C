@@ -4,47 +4,14 @@
 #include "partitionCoarseMesh.H"
 #include "partitionSurface.H"
 #include "cubeMesh.H"
+#include "surfaceChecks.H"
 #include "error.H"
 
 #include <gtest/gtest.h>
 
-#include <map>
 #include <set>
 
 using namespace pmsh;
-
-namespace
-{
-
-// Every directed edge of the part surface once, its reverse once, and the
-// faces around every vertex one fan (a single cycle of edges).
-bool closedManifold(const std::vector<triFace>& tris)
-{
-    std::map<std::pair<label, label>, int> used;
-    for (const triFace& t : tris)
-        for (int e = 0; e < 3; ++e)
-            ++used[{t[e], t[(e + 1) % 3]}];
-    for (const auto& [edge, count] : used)
-        if (count != 1 || used.count({edge.second, edge.first}) == 0)
-            return false;
-
-    // Around vertex v, each face (v, a, b) links a -> b: one cycle
-    std::map<label, std::map<label, label>> next;
-    for (const triFace& t : tris)
-        for (int e = 0; e < 3; ++e)
-            next[t[e]][t[(e + 1) % 3]] = t[(e + 2) % 3];
-    for (const auto& [v, links] : next)
-    {
-        label start = links.begin()->first, a = start;
-        std::size_t steps = 0;
-        do { a = links.at(a); ++steps; } while (a != start && steps <= links.size());
-        if (steps != links.size()) return false;
-    }
-    return true;
-}
-
-} // End anonymous namespace
-
 
 TEST(partition, everyPartIsNonEmptyWithAClosedManifoldSurface)
 {
@@ -63,7 +30,7 @@ TEST(partition, everyPartIsNonEmptyWithAClosedManifoldSurface)
         for (label p = 0; p < nParts; ++p)
         {
             EXPECT_GT(size[p], 0) << nParts << " parts";
-            EXPECT_TRUE(closedManifold(partitionSurface(m, part, p).faces))
+            EXPECT_TRUE(test::closedManifold(partitionSurface(m, part, p).faces))
                 << "part " << p << " of " << nParts;
         }
         EXPECT_EQ(countNonManifoldParts(m, part), 0) << nParts << " parts";
@@ -90,7 +57,7 @@ TEST(partition, repairTurnsACheckerboardIntoManifoldParts)
     EXPECT_EQ(countNonManifoldParts(m, part), 0);
     for (label p : {0, 1})
     {
-        EXPECT_TRUE(closedManifold(partitionSurface(m, part, p).faces)) << "part " << p;
+        EXPECT_TRUE(test::closedManifold(partitionSurface(m, part, p).faces)) << "part " << p;
     }
 }
 

@@ -1,51 +1,28 @@
 /*---------------------------------------------------------------------------*\
   pmshFoam tests: tetsToPolyMesh on small hand-built meshes.
 
-  The expected boundary of each test mesh is computed here independently
-  (a std::map of faces, orientation from the opposite vertex's position),
-  not with the library's tet face table, and every result is checked
-  against OpenFOAM's rules: face blocks, owner < neighbour, upper-triangular
-  order, normals from owner to neighbour and out of the domain, patch
-  layout, and processor faces that are reverseFace of each other.
+  The expected boundary of each test mesh is computed independently of the
+  library (testMeshes.H), and every result is checked against OpenFOAM's
+  rules: face blocks, owner < neighbour, upper-triangular order, normals
+  from owner to neighbour and out of the domain, patch layout, and
+  processor faces that are reverseFace of each other.
 \*---------------------------------------------------------------------------*/
 
 #include "tetsToPolyMesh.H"
-#include "error.H"
+#include "testMeshes.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <map>
 #include <numeric>
-#include <set>
 
 using namespace pmsh;
+using namespace pmsh::test;
 
 namespace
 {
-
-struct tetMesh
-{
-    std::vector<point> points;
-    std::vector<tetCell> tets;
-};
-
-
-//- Swap two points of every negative tet so all are positive.
-void orientPositive(tetMesh& m)
-{
-    for (tetCell& t : m.tets)
-    {
-        const auto& p = m.points;
-        if (tetVolume6(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) < 0)
-        {
-            std::swap(t[2], t[3]);
-        }
-    }
-}
-
 
 tetMesh singleTet()
 {
@@ -81,71 +58,15 @@ tetMesh fiveTetCube()
 }
 
 
-//- nx*ny*nz boxes, each split into 6 tets around its main diagonal (Kuhn),
-//  which is conforming between boxes. Spacing is uneven on purpose.
+//- Kuhn grid (kuhnGridAt) with uneven spacing on purpose.
 tetMesh kuhnGrid(int nx, int ny, int nz)
 {
-    tetMesh m;
     auto coord = [](int i) { return i + 0.1*i*i; };
-    auto id = [&](int i, int j, int k) { return label(i + (nx + 1)*(j + (ny + 1)*k)); };
-    for (int k = 0; k <= nz; ++k)
-    {
-        for (int j = 0; j <= ny; ++j)
-        {
-            for (int i = 0; i <= nx; ++i)
-            {
-                m.points.push_back({coord(i), 0.5*coord(j), 2*coord(k)});
-            }
-        }
-    }
-    std::array<int, 3> perm = {0, 1, 2};
-    for (int k = 0; k < nz; ++k)
-    {
-        for (int j = 0; j < ny; ++j)
-        {
-            for (int i = 0; i < nx; ++i)
-            {
-                std::sort(perm.begin(), perm.end());
-                do
-                {
-                    std::array<int, 3> c = {i, j, k};
-                    tetCell t;
-                    t[0] = id(c[0], c[1], c[2]);
-                    for (int s = 0; s < 3; ++s)
-                    {
-                        ++c[perm[s]];
-                        t[s + 1] = id(c[0], c[1], c[2]);
-                    }
-                    m.tets.push_back(t);
-                } while (std::next_permutation(perm.begin(), perm.end()));
-            }
-        }
-    }
-    orientPositive(m);
-    return m;
-}
-
-
-point centroid(const std::vector<point>& p, const std::vector<label>& ids)
-{
-    point c = {0, 0, 0};
-    for (label i : ids)
-    {
-        c = c + p[i];
-    }
-    return (1.0/ids.size())*c;
-}
-
-
-point cellCentre(const std::vector<point>& p, const tetCell& t)
-{
-    return centroid(p, {t[0], t[1], t[2], t[3]});
-}
-
-
-vector faceNormal(const std::vector<point>& p, const triFace& f)
-{
-    return cross(p[f[1]] - p[f[0]], p[f[2]] - p[f[0]]);
+    return kuhnGridAt
+    (
+        nx, ny, nz,
+        [&](int i, int j, int k) { return point{coord(i), 0.5*coord(j), 2*coord(k)}; }
+    );
 }
 
 
@@ -176,188 +97,6 @@ label boxRegion(const point& c, const point& lo, const point& hi)
     if (std::abs(c[2] - lo[2]) < eps) return 5;
     // zMax, and any slanted face (of the single tets)
     return 6;
-}
-
-
-//- One of the even permutations of t (orientation kept), chosen by i, so
-//  that the first point of a tet is not always its smallest (the Kuhn
-//  tets happen to list their points in increasing order).
-tetCell evenPermutation(const tetCell& t, label i)
-{
-    switch (i % 4)
-    {
-        case 0: return t;
-        case 1: return {t[1], t[2], t[0], t[3]};
-        case 2: return {t[1], t[0], t[3], t[2]};
-        default: return {t[3], t[2], t[1], t[0]};
-    }
-}
-
-
-//- The input of one rank, built independently of the library.
-struct rankInput
-{
-    std::vector<point> points;
-    std::vector<tetCell> tets;
-    std::vector<triFace> tris;
-    std::vector<label> regions;
-    std::vector<globalLabel> globalIds;     //!< empty in serial
-    std::vector<label> globalCell;          //!< local tet -> global tet
-};
-
-
-//- Rank `rank`'s part of m (tetRank empty: serial, all tets). Local points
-//  are numbered in a scrambled order so that local and global orders
-//  differ; boundary triangles are oriented outward geometrically.
-rankInput makeRankInput
-(
-    const tetMesh& m,
-    const std::vector<int>& tetRank,
-    int rank
-)
-{
-    const bool serial = tetRank.empty();
-    auto rankOf = [&](label t) { return serial ? 0 : tetRank[t]; };
-
-    point lo = m.points[0], hi = m.points[0];
-    for (const point& p : m.points)
-    {
-        for (int d = 0; d < 3; ++d)
-        {
-            lo[d] = std::min(lo[d], p[d]);
-            hi[d] = std::max(hi[d], p[d]);
-        }
-    }
-
-    rankInput in;
-    std::map<label, label> localOf;
-    for (label t = 0; t < label(m.tets.size()); ++t)
-    {
-        if (rankOf(t) == rank)
-        {
-            in.globalCell.push_back(t);
-            for (label v : m.tets[t])
-            {
-                localOf[v] = 0;
-            }
-        }
-    }
-    // Scrambled but deterministic local point order
-    std::vector<label> globalPts;
-    for (const auto& kv : localOf)
-    {
-        globalPts.push_back(kv.first);
-    }
-    if (!serial)
-    {
-        std::sort
-        (
-            globalPts.begin(), globalPts.end(),
-            [rank](label a, label b)
-            {
-                const unsigned ha = unsigned(a*2654435761u + rank);
-                const unsigned hb = unsigned(b*2654435761u + rank);
-                return ha % 97 != hb % 97 ? ha % 97 < hb % 97 : a < b;
-            }
-        );
-    }
-    for (label i = 0; i < label(globalPts.size()); ++i)
-    {
-        localOf[globalPts[i]] = i;
-        in.points.push_back(m.points[globalPts[i]]);
-        if (!serial)
-        {
-            in.globalIds.push_back(globalPts[i]);
-        }
-    }
-    for (label t : in.globalCell)
-    {
-        tetCell c;
-        for (int k = 0; k < 4; ++k)
-        {
-            c[k] = localOf[m.tets[t][k]];
-        }
-        in.tets.push_back(evenPermutation(c, t + rank));
-    }
-
-    // Faces of the whole mesh: sorted global triple -> (tet, opposite vertex)
-    std::map<std::array<label, 3>, std::vector<std::pair<label, label>>> faces;
-    for (label t = 0; t < label(m.tets.size()); ++t)
-    {
-        for (int skip = 0; skip < 4; ++skip)
-        {
-            std::array<label, 3> key;
-            int n = 0;
-            for (int k = 0; k < 4; ++k)
-            {
-                if (k != skip)
-                {
-                    key[n++] = m.tets[t][k];
-                }
-            }
-            std::sort(key.begin(), key.end());
-            faces[key].push_back({t, m.tets[t][skip]});
-        }
-    }
-
-    for (const auto& kv : faces)
-    {
-        const auto& key = kv.first;
-        const auto& users = kv.second;
-        int mine = -1;
-        for (int u = 0; u < int(users.size()); ++u)
-        {
-            if (rankOf(users[u].first) == rank)
-            {
-                mine = u;
-            }
-        }
-        if (mine < 0)
-        {
-            continue;
-        }
-        label region;
-        if (users.size() == 1)
-        {
-            region = boxRegion(centroid(m.points, {key[0], key[1], key[2]}), lo, hi);
-        }
-        else
-        {
-            const int other = rankOf(users[1 - mine].first);
-            if (other == rank)
-            {
-                continue;
-            }
-            region = interfaceRegion(other);
-        }
-        // Outward: the normal points away from the opposite vertex
-        triFace f = {key[0], key[1], key[2]};
-        const point& w = m.points[users[mine].second];
-        if (dot(faceNormal(m.points, f), w - m.points[f[0]]) > 0)
-        {
-            std::swap(f[1], f[2]);
-        }
-        in.tris.push_back({localOf[f[0]], localOf[f[1]], localOf[f[2]]});
-        in.regions.push_back(region);
-    }
-    return in;
-}
-
-
-PolyMesh build
-(
-    const rankInput& in,
-    const std::vector<polyPatchInfo>& patches,
-    label myProcNo = -1,
-    tetsToPolyMeshMaps* maps = nullptr
-)
-{
-    std::vector<point> pts = in.points;
-    return tetsToPolyMesh
-    (
-        std::move(pts), in.tets, in.tris, in.regions, patches, myProcNo,
-        in.globalIds, maps
-    );
 }
 
 
@@ -488,20 +227,6 @@ std::vector<int> slabRanks(const tetMesh& m, int nRanks)
     return rank;
 }
 
-
-std::string errorOf(const std::function<void()>& f)
-{
-    try
-    {
-        f();
-    }
-    catch (const FatalError& e)
-    {
-        return e.message();
-    }
-    return "";
-}
-
 } // End anonymous namespace
 
 
@@ -544,7 +269,7 @@ TEST(tetsToPolyMesh, tetFaceTableIsOutwardAndOppositeVertex3MinusF)
 TEST(tetsToPolyMesh, singleTetHasFourOutwardBoundaryFaces)
 {
     const tetMesh m = singleTet();
-    const rankInput in = makeRankInput(m, {}, 0);
+    const rankInput in = makeRankInput(m, {}, 0, boxRegion);
     const PolyMesh mesh = build(in, boxPatches());
 
     EXPECT_EQ(mesh.nCells, 1);
@@ -558,7 +283,7 @@ TEST(tetsToPolyMesh, singleTetHasFourOutwardBoundaryFaces)
 TEST(tetsToPolyMesh, twoTetsShareOneFaceOrientedFromLowerToHigherCell)
 {
     const tetMesh m = twoTets();
-    rankInput in = makeRankInput(m, {}, 0);
+    rankInput in = makeRankInput(m, {}, 0, boxRegion);
     std::vector<polyPatchInfo> patches(1);
     patches[0].name = "walls";
     for (label& r : in.regions)
@@ -580,7 +305,7 @@ TEST(tetsToPolyMesh, twoTetsShareOneFaceOrientedFromLowerToHigherCell)
 TEST(tetsToPolyMesh, fiveTetCubeIsValid)
 {
     const tetMesh m = fiveTetCube();
-    const rankInput in = makeRankInput(m, {}, 0);
+    const rankInput in = makeRankInput(m, {}, 0, boxRegion);
     const PolyMesh mesh = build(in, boxPatches());
 
     EXPECT_EQ(mesh.nInternalFaces(), 4);
@@ -593,7 +318,7 @@ TEST(tetsToPolyMesh, fiveTetCubeIsValid)
 TEST(tetsToPolyMesh, sixTetCubeHasTwoFacesPerSideAndEmptyPatchKept)
 {
     const tetMesh m = kuhnGrid(1, 1, 1);
-    const rankInput in = makeRankInput(m, {}, 0);
+    const rankInput in = makeRankInput(m, {}, 0, boxRegion);
     const PolyMesh mesh = build(in, boxPatches());
 
     EXPECT_EQ(mesh.nCells, 6);
@@ -617,7 +342,7 @@ TEST(tetsToPolyMesh, sixTetCubeHasTwoFacesPerSideAndEmptyPatchKept)
 TEST(tetsToPolyMesh, gridIsUpperTriangularAndOriented)
 {
     const tetMesh m = kuhnGrid(3, 2, 2);
-    const rankInput in = makeRankInput(m, {}, 0);
+    const rankInput in = makeRankInput(m, {}, 0, boxRegion);
     const PolyMesh mesh = build(in, boxPatches());
 
     expectValidPolyMesh(mesh, in.tets);
@@ -629,7 +354,7 @@ TEST(tetsToPolyMesh, gridIsUpperTriangularAndOriented)
 TEST(tetsToPolyMesh, physicalPatchFacesAreOrderedByOwner)
 {
     const tetMesh m = kuhnGrid(2, 2, 2);
-    const rankInput in = makeRankInput(m, {}, 0);
+    const rankInput in = makeRankInput(m, {}, 0, boxRegion);
     const PolyMesh mesh = build(in, boxPatches());
 
     for (const polyPatchInfo& pp : mesh.patches)
@@ -646,7 +371,7 @@ TEST(tetsToPolyMesh, resultDoesNotDependOnBoundaryTriangleOrder)
 {
     const tetMesh m = kuhnGrid(2, 2, 1);
     const std::vector<int> ranks = slabRanks(m, 2);
-    rankInput in = makeRankInput(m, ranks, 1);
+    rankInput in = makeRankInput(m, ranks, 1, boxRegion);
     const PolyMesh a = build(in, boxPatches(), 1);
 
     // Reverse and rotate the triangles: same mesh expected
@@ -666,7 +391,7 @@ TEST(tetsToPolyMesh, resultDoesNotDependOnBoundaryTriangleOrder)
 
 TEST(tetsToPolyMesh, serialMeshHasNoProcessorPatches)
 {
-    const rankInput in = makeRankInput(kuhnGrid(2, 1, 1), {}, 0);
+    const rankInput in = makeRankInput(kuhnGrid(2, 1, 1), {}, 0, boxRegion);
     const PolyMesh mesh = build(in, boxPatches());
     for (const polyPatchInfo& pp : mesh.patches)
     {
@@ -683,7 +408,7 @@ TEST(tetsToPolyMesh, twoRankCubeHasProcessorPatchesAfterPhysicalOnes)
 
     for (int rank = 0; rank < 2; ++rank)
     {
-        const rankInput in = makeRankInput(m, ranks, rank);
+        const rankInput in = makeRankInput(m, ranks, rank, boxRegion);
         const PolyMesh mesh = build(in, boxPatches(), rank);
         expectValidPolyMesh(mesh, in.tets);
 
@@ -708,7 +433,7 @@ TEST(tetsToPolyMesh, processorPatchesAreInAscendingNeighbourRank)
     const std::vector<int> ranks = slabRanks(m, 3);
 
     // Rank 1 touches ranks 0 and 2; feed rank 2's triangles first
-    rankInput in = makeRankInput(m, ranks, 1);
+    rankInput in = makeRankInput(m, ranks, 1, boxRegion);
     std::vector<std::size_t> order(in.tris.size());
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort
@@ -766,7 +491,7 @@ TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
         std::vector<PolyMesh> mesh;
         for (int r = 0; r < tc.nRanks; ++r)
         {
-            in.push_back(makeRankInput(tc.m, tc.ranks, r));
+            in.push_back(makeRankInput(tc.m, tc.ranks, r, boxRegion));
             mesh.push_back(build(in.back(), boxPatches(), r));
             expectValidPolyMesh(mesh.back(), in.back().tets);
         }
@@ -834,7 +559,7 @@ TEST(tetsToPolyMesh, mapsLeadFromTetFacesAndTrianglesToPolyMeshFaces)
 {
     const tetMesh m = kuhnGrid(2, 2, 1);
     const std::vector<int> ranks = slabRanks(m, 2);
-    const rankInput in = makeRankInput(m, ranks, 0);
+    const rankInput in = makeRankInput(m, ranks, 0, boxRegion);
     tetsToPolyMeshMaps maps;
     const PolyMesh mesh = build(in, boxPatches(), 0, &maps);
 
@@ -868,7 +593,7 @@ TEST(tetsToPolyMesh, mapsLeadFromTetFacesAndTrianglesToPolyMeshFaces)
 
 TEST(tetsToPolyMesh, boundaryTriangleNotOnATetIsAnError)
 {
-    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0);
+    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0, boxRegion);
     // Replace one triangle by one through the cube's interior diagonal
     in.tris[0] = {0, 7, 3};
     const std::string e = errorOf([&]() { build(in, boxPatches()); });
@@ -881,7 +606,7 @@ TEST(tetsToPolyMesh, boundaryTriangleNotOnATetIsAnError)
 
 TEST(tetsToPolyMesh, reversedBoundaryTriangleIsAnError)
 {
-    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0);
+    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0, boxRegion);
     std::swap(in.tris[3][1], in.tris[3][2]);
     const std::string e = errorOf([&]() { build(in, boxPatches()); });
     EXPECT_NE(e.find("1 boundary surface triangles are not oriented outward"), std::string::npos) << e;
@@ -890,7 +615,7 @@ TEST(tetsToPolyMesh, reversedBoundaryTriangleIsAnError)
 
 TEST(tetsToPolyMesh, missingBoundaryTriangleIsAnError)
 {
-    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0);
+    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0, boxRegion);
     in.tris.pop_back();
     in.regions.pop_back();
     const std::string e = errorOf([&]() { build(in, boxPatches()); });
@@ -900,7 +625,7 @@ TEST(tetsToPolyMesh, missingBoundaryTriangleIsAnError)
 
 TEST(tetsToPolyMesh, surfaceTriangleOnAnInternalFaceIsAnError)
 {
-    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0);
+    rankInput in = makeRankInput(kuhnGrid(1, 1, 1), {}, 0, boxRegion);
     // Tets 0 and 1 of the Kuhn cube share a face
     in.tris.push_back(tetFace(in.tets[0], 0));
     in.regions.push_back(0);
@@ -911,7 +636,7 @@ TEST(tetsToPolyMesh, surfaceTriangleOnAnInternalFaceIsAnError)
 
 TEST(tetsToPolyMesh, nonPositiveTetIsAnError)
 {
-    rankInput in = makeRankInput(singleTet(), {}, 0);
+    rankInput in = makeRankInput(singleTet(), {}, 0, boxRegion);
     std::swap(in.tets[0][0], in.tets[0][1]);
     const std::string e = errorOf([&]() { build(in, boxPatches()); });
     EXPECT_NE(e.find("non-positive volume"), std::string::npos) << e;
@@ -920,7 +645,7 @@ TEST(tetsToPolyMesh, nonPositiveTetIsAnError)
 
 TEST(tetsToPolyMesh, regionWithoutPatchIsAnError)
 {
-    rankInput in = makeRankInput(singleTet(), {}, 0);
+    rankInput in = makeRankInput(singleTet(), {}, 0, boxRegion);
     in.regions[0] = 7;
     const std::string e = errorOf([&]() { build(in, boxPatches()); });
     EXPECT_NE(e.find("invalid region"), std::string::npos) << e;
@@ -929,7 +654,7 @@ TEST(tetsToPolyMesh, regionWithoutPatchIsAnError)
 
 TEST(tetsToPolyMesh, interfaceRegionInSerialIsAnError)
 {
-    rankInput in = makeRankInput(singleTet(), {}, 0);
+    rankInput in = makeRankInput(singleTet(), {}, 0, boxRegion);
     in.regions[0] = interfaceRegion(1);
     const std::string e = errorOf([&]() { build(in, boxPatches()); });
     EXPECT_NE(e.find("invalid region"), std::string::npos) << e;
@@ -939,7 +664,7 @@ TEST(tetsToPolyMesh, interfaceRegionInSerialIsAnError)
 TEST(tetsToPolyMesh, interfaceWithOwnRankIsAnError)
 {
     const tetMesh m = kuhnGrid(1, 1, 1);
-    rankInput in = makeRankInput(m, {0, 0, 0, 1, 1, 1}, 0);
+    rankInput in = makeRankInput(m, {0, 0, 0, 1, 1, 1}, 0, boxRegion);
     for (label& r : in.regions)
     {
         if (isInterfaceRegion(r)) r = interfaceRegion(0);
@@ -951,7 +676,7 @@ TEST(tetsToPolyMesh, interfaceWithOwnRankIsAnError)
 
 TEST(tetsToPolyMesh, unusedPointIsAnError)
 {
-    rankInput in = makeRankInput(singleTet(), {}, 0);
+    rankInput in = makeRankInput(singleTet(), {}, 0, boxRegion);
     in.points.push_back({5, 5, 5});
     const std::string e = errorOf([&]() { build(in, boxPatches()); });
     EXPECT_NE(e.find("used by no tet"), std::string::npos) << e;
@@ -960,7 +685,7 @@ TEST(tetsToPolyMesh, unusedPointIsAnError)
 
 TEST(tetsToPolyMesh, duplicateTetIsAnError)
 {
-    rankInput in = makeRankInput(singleTet(), {}, 0);
+    rankInput in = makeRankInput(singleTet(), {}, 0, boxRegion);
     in.tets.push_back(in.tets[0]);
     const std::string e = errorOf([&]() { build(in, boxPatches()); });
     EXPECT_FALSE(e.empty());
@@ -969,7 +694,7 @@ TEST(tetsToPolyMesh, duplicateTetIsAnError)
 
 TEST(tetsToPolyMesh, physicalPatchOfTypeProcessorIsAnError)
 {
-    rankInput in = makeRankInput(singleTet(), {}, 0);
+    rankInput in = makeRankInput(singleTet(), {}, 0, boxRegion);
     std::vector<polyPatchInfo> patches = boxPatches();
     patches[6].type = "processor";
     const std::string e = errorOf([&]() { build(in, patches); });
@@ -980,7 +705,7 @@ TEST(tetsToPolyMesh, physicalPatchOfTypeProcessorIsAnError)
 TEST(tetsToPolyMesh, repeatedGlobalPointIdOnProcessorFaceIsAnError)
 {
     const tetMesh m = kuhnGrid(1, 1, 1);
-    rankInput in = makeRankInput(m, {0, 0, 0, 1, 1, 1}, 0);
+    rankInput in = makeRankInput(m, {0, 0, 0, 1, 1, 1}, 0, boxRegion);
     // Give two points of an interface triangle the same global id
     for (std::size_t b = 0; b < in.tris.size(); ++b)
     {
@@ -998,7 +723,7 @@ TEST(tetsToPolyMesh, repeatedGlobalPointIdOnProcessorFaceIsAnError)
 TEST(tetsToPolyMesh, globalPointIdsOfWrongSizeAreAnError)
 {
     const tetMesh m = kuhnGrid(1, 1, 1);
-    rankInput in = makeRankInput(m, {0, 0, 0, 1, 1, 1}, 0);
+    rankInput in = makeRankInput(m, {0, 0, 0, 1, 1, 1}, 0, boxRegion);
     in.globalIds.pop_back();
     const std::string e = errorOf([&]() { build(in, boxPatches(), 0); });
     EXPECT_NE(e.find("global point ids given"), std::string::npos) << e;

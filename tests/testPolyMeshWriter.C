@@ -9,27 +9,25 @@
 #include "foamFile.H"
 #include "polyMeshWriter.H"
 #include "tetsToPolyMesh.H"
-#include "error.H"
 #include "foamFileReader.H"
+#include "testMeshes.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <limits>
-#include <map>
 #include <sstream>
 
 using namespace pmsh;
+using namespace pmsh::test;
 namespace fs = std::filesystem;
 
 namespace
@@ -37,59 +35,19 @@ namespace
 
 // * * * * * * * * * * * * * * * Test meshes * * * * * * * * * * * * * * * //
 
-struct tetMesh
-{
-    std::vector<point> points;
-    std::vector<tetCell> tets;
-};
-
-
-//- nx*ny*nz boxes of 6 positive tets each (Kuhn split, conforming). The
-//  points are perturbed off round decimals so the digits written matter.
+//- Kuhn grid (kuhnGridAt). The points are perturbed off round decimals so
+//  the digits written matter.
 tetMesh kuhnGrid(int nx, int ny, int nz, double jiggle = 0)
 {
-    tetMesh m;
-    auto id = [&](int i, int j, int k) { return label(i + (nx + 1)*(j + (ny + 1)*k)); };
-    for (int k = 0; k <= nz; ++k)
-    {
-        for (int j = 0; j <= ny; ++j)
+    return kuhnGridAt
+    (
+        nx, ny, nz,
+        [jiggle](int i, int j, int k)
         {
-            for (int i = 0; i <= nx; ++i)
-            {
-                const double s = jiggle*std::sin(1.0 + i + 3*j + 7*k);
-                m.points.push_back({i/3.0 + s, j/7.0 + s, k*0.1 + s});
-            }
+            const double s = jiggle*std::sin(1.0 + i + 3*j + 7*k);
+            return point{i/3.0 + s, j/7.0 + s, k*0.1 + s};
         }
-    }
-    std::array<int, 3> perm = {0, 1, 2};
-    for (int k = 0; k < nz; ++k)
-    {
-        for (int j = 0; j < ny; ++j)
-        {
-            for (int i = 0; i < nx; ++i)
-            {
-                std::sort(perm.begin(), perm.end());
-                do
-                {
-                    std::array<int, 3> c = {i, j, k};
-                    tetCell t;
-                    t[0] = id(c[0], c[1], c[2]);
-                    for (int s = 0; s < 3; ++s)
-                    {
-                        ++c[perm[s]];
-                        t[s + 1] = id(c[0], c[1], c[2]);
-                    }
-                    const auto& p = m.points;
-                    if (tetVolume6(p[t[0]], p[t[1]], p[t[2]], p[t[3]]) < 0)
-                    {
-                        std::swap(t[2], t[3]);
-                    }
-                    m.tets.push_back(t);
-                } while (std::next_permutation(perm.begin(), perm.end()));
-            }
-        }
-    }
-    return m;
+    );
 }
 
 
@@ -109,9 +67,8 @@ std::vector<polyPatchInfo> boxPatches()
 
 
 //- The PolyMesh of rank `rank` of m split into x-slabs of boxes (nRanks 1:
-//  serial), or with tets scattered over the ranks. Local points are
-//  numbered in a scrambled order. Boundary faces: x = min -> inlet,
-//  x = max -> outlet, else walls.
+//  serial), or with tets scattered over the ranks. Boundary faces:
+//  x = min -> inlet, x = max -> outlet, else walls.
 PolyMesh rankMesh
 (
     const tetMesh& m,
@@ -122,143 +79,28 @@ PolyMesh rankMesh
 )
 {
     const bool serial = nRanks == 1;
-    auto rankOfTet = [&](label t)
+    std::vector<int> tetRank(m.tets.size());
+    for (std::size_t t = 0; t < tetRank.size(); ++t)
     {
-        return scatter ? int((t*7 + t/5) % nRanks) : int((t/6) % nx)*nRanks/nx;
+        tetRank[t] = scatter ? int((t*7 + t/5) % nRanks) : int((t/6) % nx)*nRanks/nx;
+    }
+    auto region = [](const point& c, const point& lo, const point& hi)
+    {
+        // Faces on the x = const ends (jiggle is 0 for the checkMesh cases)
+        const double eps = 1e-12;
+        return label(std::abs(c[0] - lo[0]) < eps ? 0 : std::abs(c[0] - hi[0]) < eps ? 1 : 3);
     };
-
-    std::map<label, label> localOf;
-    std::vector<tetCell> tets;
-    for (label t = 0; t < label(m.tets.size()); ++t)
+    rankInput in = makeRankInput(m, tetRank, rank, region);
+    if (serial)
     {
-        if (rankOfTet(t) == rank)
-        {
-            tets.push_back(m.tets[t]);
-            for (label v : m.tets[t]) localOf[v] = 0;
-        }
+        // Local points scrambled all the same, but no global point ids
+        in.globalIds.clear();
     }
-    std::vector<point> points;
-    std::vector<globalLabel> globalIds;
-    std::vector<label> globalPts;
-    for (const auto& kv : localOf) globalPts.push_back(kv.first);
-    std::sort
-    (
-        globalPts.begin(), globalPts.end(),
-        [rank](label a, label b)
-        {
-            const unsigned ha = unsigned(a*2654435761u + rank) % 97;
-            const unsigned hb = unsigned(b*2654435761u + rank) % 97;
-            return ha != hb ? ha < hb : a < b;
-        }
-    );
-    for (label v : globalPts)
-    {
-        localOf[v] = label(points.size());
-        points.push_back(m.points[v]);
-        if (!serial) globalIds.push_back(v);
-    }
-    for (std::size_t i = 0; i < tets.size(); ++i)
-    {
-        tetCell& t = tets[i];
-        for (label& v : t) v = localOf[v];
-        // An even permutation (orientation kept) so a tet's first point is
-        // not always its smallest: the Kuhn tets list them in order
-        if (i % 3 == 1) t = {t[1], t[2], t[0], t[3]};
-        if (i % 3 == 2) t = {t[3], t[2], t[1], t[0]};
-    }
-
-    double xMin = 1e300, xMax = -1e300;
-    for (const point& p : m.points)
-    {
-        xMin = std::min(xMin, p[0]);
-        xMax = std::max(xMax, p[0]);
-    }
-
-    std::map<std::array<label, 3>, std::vector<std::pair<label, label>>> faces;
-    for (label t = 0; t < label(m.tets.size()); ++t)
-    {
-        for (int skip = 0; skip < 4; ++skip)
-        {
-            std::array<label, 3> key;
-            int n = 0;
-            for (int k = 0; k < 4; ++k)
-            {
-                if (k != skip) key[n++] = m.tets[t][k];
-            }
-            std::sort(key.begin(), key.end());
-            faces[key].push_back({t, m.tets[t][skip]});
-        }
-    }
-    std::vector<triFace> tris;
-    std::vector<label> regions;
-    for (const auto& kv : faces)
-    {
-        const auto& key = kv.first;
-        const auto& users = kv.second;
-        int mine = -1;
-        for (int u = 0; u < int(users.size()); ++u)
-        {
-            if (rankOfTet(users[u].first) == rank) mine = u;
-        }
-        if (mine < 0) continue;
-
-        label region;
-        if (users.size() == 2)
-        {
-            const int other = rankOfTet(users[1 - mine].first);
-            if (other == rank) continue;
-            region = interfaceRegion(other);
-        }
-        else
-        {
-            const double x =
-                (m.points[key[0]][0] + m.points[key[1]][0] + m.points[key[2]][0])/3;
-            // Faces on the x = const ends (jiggle is 0 for the checkMesh cases)
-            region = std::abs(x - xMin) < 1e-12 ? 0 : std::abs(x - xMax) < 1e-12 ? 1 : 3;
-        }
-        triFace f = {key[0], key[1], key[2]};
-        const auto& p = m.points;
-        const vector n = cross(p[f[1]] - p[f[0]], p[f[2]] - p[f[0]]);
-        if (dot(n, p[users[mine].second] - p[f[0]]) > 0) std::swap(f[1], f[2]);
-        tris.push_back({localOf[f[0]], localOf[f[1]], localOf[f[2]]});
-        regions.push_back(region);
-    }
-    return tetsToPolyMesh
-    (
-        std::move(points), tets, tris, regions, boxPatches(),
-        serial ? -1 : rank, globalIds
-    );
+    return build(in, boxPatches(), serial ? -1 : rank);
 }
 
 
 // * * * * * * * * * * * * * * * * Utilities * * * * * * * * * * * * * * * //
-
-//- A fresh temporary directory, removed at the end of the test.
-struct tmpDir
-{
-    fs::path path;
-
-    explicit tmpDir(const std::string& name)
-    {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        std::string leaf = "pmshTest_" + std::to_string(::getpid()) + "_"
-            + info->name() + "_" + name;
-        // Parameterised test names contain '/'
-        std::replace(leaf.begin(), leaf.end(), '/', '_');
-        path = fs::temp_directory_path() / leaf;
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-
-    ~tmpDir()
-    {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-
-    std::string operator/(const std::string& f) const { return (path / f).string(); }
-};
-
 
 foamFileFormat format(bool binary, int labelBits, int precision = 6)
 {
@@ -274,20 +116,6 @@ template<class T>
 std::string rawBytes(const std::vector<T>& v)
 {
     return std::string(reinterpret_cast<const char*>(v.data()), v.size()*sizeof(T));
-}
-
-
-std::string errorOf(const std::function<void()>& f)
-{
-    try
-    {
-        f();
-    }
-    catch (const FatalError& e)
-    {
-        return e.message();
-    }
-    return "";
 }
 
 
@@ -315,7 +143,7 @@ TEST_P(polyMeshRoundTrip, readsBackWhatWasWritten)
     const PolyMesh mesh = rankMesh(m, 4, 1, 2);
     ASSERT_GT(mesh.patches.size(), boxPatches().size()) << "no processor patch";
 
-    tmpDir tmp("case");
+    tempDir tmp("case");
     const std::string dir = tmp / "processor1/constant/polyMesh";
     writePolyMesh(dir, mesh, fmt, "processor1/constant/polyMesh");
 
@@ -415,7 +243,7 @@ INSTANTIATE_TEST_SUITE_P
 
 TEST(foamFile, asciiPointsHaveAtLeast15DigitsWhateverThePrecision)
 {
-    tmpDir tmp("pts");
+    tempDir tmp("pts");
     const std::vector<point> pts = {{1.0/3, 2.0/3, -1e-20/3}};
     writePointFieldFile(tmp / "points", pts, format(false, 32, 3), "constant/polyMesh");
 
@@ -438,7 +266,7 @@ TEST(foamFile, asciiPointsHaveAtLeast15DigitsWhateverThePrecision)
 
 TEST(foamFile, asciiFacesAreOneFacePerLine)
 {
-    tmpDir tmp("faces");
+    tempDir tmp("faces");
     writeFaceListFile(tmp / "faces", {{0, 1, 2}, {2, 1, 30}}, format(false, 32), "constant/polyMesh");
     const pmshTest::foamFile f = pmshTest::readFoamFile(tmp / "faces");
     EXPECT_EQ(f.header.at("class"), "faceList");
@@ -450,7 +278,7 @@ TEST(foamFile, asciiFacesAreOneFacePerLine)
 
 TEST(foamFile, emptyListsAreBareZeroInBinaryAndZeroParensInAscii)
 {
-    tmpDir tmp("empty");
+    tempDir tmp("empty");
     for (int bits : {32, 64})
     {
         writeLabelListFile(tmp / "b", std::vector<label>(), format(true, bits), "constant/polyMesh");
@@ -480,7 +308,7 @@ TEST(foamFile, emptyListsAreBareZeroInBinaryAndZeroParensInAscii)
 
 TEST(foamFile, binaryListIsNewlineSizeNewlineParenRawBytesParen)
 {
-    tmpDir tmp("layout");
+    tempDir tmp("layout");
     const std::vector<label> labels = {1, -2, 2147483647};
 
     writeLabelListFile(tmp / "l32", labels, format(true, 32), "constant/polyMesh");
@@ -514,7 +342,7 @@ TEST(foamFile, binaryListIsNewlineSizeNewlineParenRawBytesParen)
 
 TEST(foamFile, asciiLabelListIsMultiLine)
 {
-    tmpDir tmp("ascii");
+    tempDir tmp("ascii");
     writeLabelListFile(tmp / "l", std::vector<globalLabel>{5, -1, 7}, format(false, 32), "");
     const pmshTest::foamFile f = pmshTest::readFoamFile(tmp / "l");
     EXPECT_EQ(f.body, "3\n(\n5\n-1\n7\n)");
@@ -526,7 +354,7 @@ TEST(foamFile, asciiLabelListIsMultiLine)
 TEST(foamFile, largeListsRoundTripThroughTheBuffer)
 {
     // More than one buffer's worth in every path (binary, width change, ascii)
-    tmpDir tmp("large");
+    tempDir tmp("large");
     std::vector<label> labels(700000);
     for (std::size_t i = 0; i < labels.size(); ++i)
     {
@@ -550,7 +378,7 @@ TEST(foamFile, largeListsRoundTripThroughTheBuffer)
 
 TEST(foamFile, labelAbove32BitsIsAnErrorWithLabelSize32)
 {
-    tmpDir tmp("overflow");
+    tempDir tmp("overflow");
     const globalLabel big = globalLabel(std::numeric_limits<std::int32_t>::max()) + 1;
     const globalLabel small = globalLabel(std::numeric_limits<std::int32_t>::min()) - 1;
 
@@ -596,7 +424,7 @@ TEST(foamFile, labelAbove32BitsIsAnErrorWithLabelSize32)
 
 TEST(foamFile, unwritablePathIsAnErrorNamingTheFile)
 {
-    tmpDir tmp("unwritable");
+    tempDir tmp("unwritable");
     const std::string path = tmp / "no/such/dir/owner";
     const std::string e = errorOf
     (
@@ -623,7 +451,7 @@ TEST(foamFile, unwritablePathIsAnErrorNamingTheFile)
 
 TEST(foamFile, unsupportedLabelSizeIsAnError)
 {
-    tmpDir tmp("bits");
+    tempDir tmp("bits");
     const std::string e = errorOf
     (
         [&]() { writeLabelListFile(tmp / "x", std::vector<label>{1}, format(false, 16), ""); }
@@ -638,7 +466,7 @@ TEST(polyMeshWriter, boundaryIsAsciiWithProcessorAndWallEntries)
 {
     const tetMesh m = kuhnGrid(3, 1, 1);
     const PolyMesh mesh = rankMesh(m, 3, 1, 3);
-    tmpDir tmp("boundary");
+    tempDir tmp("boundary");
     writePolyMesh(tmp / "polyMesh", mesh, format(true, 64), "processor1/constant/polyMesh");
 
     const pmshTest::foamFile f = pmshTest::readFoamFile(tmp / "polyMesh/boundary");
@@ -690,7 +518,7 @@ TEST(polyMeshWriter, inconsistentPatchLayoutIsNotWritten)
 {
     PolyMesh mesh = rankMesh(kuhnGrid(1, 1, 1), 1, 0, 1);
     mesh.patches[1].start += 1;
-    tmpDir tmp("layout");
+    tempDir tmp("layout");
     const std::string e = errorOf
     (
         [&]() { writePolyMesh(tmp / "polyMesh", mesh, format(false, 32), "constant/polyMesh"); }
@@ -770,28 +598,6 @@ void writeSystemDicts(const std::string& caseDir, int nRanks = 1)
     }
 }
 
-
-//- Run a command with OpenFOAM's environment; output (stdout+stderr) and
-//  exit status.
-std::pair<std::string, int> runFoam(const std::string& command)
-{
-    const std::string cmd =
-        "WM_PROJECT_DIR=/usr/share/openfoam " + command + " 2>&1";
-    std::FILE* p = ::popen(cmd.c_str(), "r");
-    if (!p)
-    {
-        return {"popen failed", -1};
-    }
-    std::string out;
-    char buf[4096];
-    for (std::size_t n; (n = std::fread(buf, 1, sizeof(buf), p)) > 0; )
-    {
-        out.append(buf, n);
-    }
-    const int status = ::pclose(p);
-    return {out, WIFEXITED(status) ? WEXITSTATUS(status) : -1};
-}
-
 } // End anonymous namespace
 
 
@@ -813,8 +619,8 @@ TEST_P(realCheckMesh, sixTetCubeAndGridAreMeshOK)
     struct meshCase { std::string name; int nx, ny, nz; };
     for (const meshCase& mc : {meshCase{"cube", 1, 1, 1}, meshCase{"grid", 4, 3, 2}})
     {
-        tmpDir tmp(mc.name);
-        const std::string caseDir = tmp.path.string();
+        tempDir tmp(mc.name);
+        const std::string caseDir = tmp.path();
         writeSystemDicts(caseDir);
         const PolyMesh mesh = rankMesh(kuhnGrid(mc.nx, mc.ny, mc.nz), mc.nx, 0, 1);
         writePolyMesh(caseDir + "/constant/polyMesh", mesh, fmt, "constant/polyMesh");
@@ -868,8 +674,8 @@ TEST(realCheckMeshParallel, decomposedCasesPassCheckMeshParallel)
         }
     )
     {
-        tmpDir tmp(pc.name);
-        const std::string caseDir = tmp.path.string();
+        tempDir tmp(pc.name);
+        const std::string caseDir = tmp.path();
         writeSystemDicts(caseDir, pc.nRanks);
         const tetMesh m = kuhnGrid(6, 3, 2);
         for (int r = 0; r < pc.nRanks; ++r)

@@ -4,6 +4,7 @@
 #include "surfaceRefinement.H"
 #include "Geometry.H"
 #include "boundaryRegion.H"
+#include "surfaceChecks.H"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,7 @@
 #include <set>
 
 using namespace pmsh;
+using namespace pmsh::test;
 
 namespace
 {
@@ -71,28 +73,6 @@ std::vector<label> splitByX(const CoarseMesh& m)
         part.push_back(t[1] == 1 ? 0 : 1);
     }
     return part;
-}
-
-// Directed-edge use counts: a closed, consistently oriented surface uses
-// every directed edge once and its reverse once.
-bool closedAndConsistent(const std::vector<triFace>& tris)
-{
-    std::map<std::pair<label, label>, int> used;
-    for (const triFace& t : tris)
-    {
-        for (int e = 0; e < 3; ++e)
-        {
-            ++used[{t[e], t[(e + 1) % 3]}];
-        }
-    }
-    for (const auto& [edge, count] : used)
-    {
-        if (count != 1 || used.count({edge.second, edge.first}) == 0)
-        {
-            return false;
-        }
-    }
-    return true;
 }
 
 double enclosedVolume(const std::vector<point>& pts, const std::vector<triFace>& tris)

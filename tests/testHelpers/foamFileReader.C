@@ -174,6 +174,33 @@ public:
         }
         return v;
     }
+
+    //- A "{ key value; ... }" block into entries; a repeated key fails with
+    //  "duplicate <what> <key><where>".
+    void readEntries
+    (
+        std::map<std::string, std::string>& entries,
+        const std::string& what,
+        const std::string& where
+    )
+    {
+        skipSpaceAndComments();
+        expect('{');
+        for (;;)
+        {
+            skipSpaceAndComments();
+            if (peek() == '}')
+            {
+                expect('}');
+                return;
+            }
+            const std::string key = word();
+            if (!entries.emplace(key, valueToSemicolon()).second)
+            {
+                fail("duplicate " + what + " " + key + where);
+            }
+        }
+    }
 };
 
 
@@ -290,22 +317,7 @@ pmshTest::foamFile pmshTest::readFoamFile(const std::string& path)
     {
         c.fail("expected FoamFile");
     }
-    c.skipSpaceAndComments();
-    c.expect('{');
-    for (;;)
-    {
-        c.skipSpaceAndComments();
-        if (c.peek() == '}')
-        {
-            c.expect('}');
-            break;
-        }
-        const std::string key = c.word();
-        if (!f.header.emplace(key, c.valueToSemicolon()).second)
-        {
-            c.fail("duplicate header entry " + key);
-        }
-    }
+    c.readEntries(f.header, "header entry", "");
     for (const char* key : {"version", "format", "class", "object"})
     {
         if (!f.header.count(key))
@@ -499,22 +511,7 @@ std::vector<pmshTest::boundaryPatch> pmshTest::readBoundary(const foamFile& f)
     {
         c.skipSpaceAndComments();
         p.name = c.word();
-        c.skipSpaceAndComments();
-        c.expect('{');
-        for (;;)
-        {
-            c.skipSpaceAndComments();
-            if (c.peek() == '}')
-            {
-                c.expect('}');
-                break;
-            }
-            const std::string key = c.word();
-            if (!p.entries.emplace(key, c.valueToSemicolon()).second)
-            {
-                c.fail("duplicate entry " + key + " in patch " + p.name);
-            }
-        }
+        c.readEntries(p.entries, "entry", " in patch " + p.name);
     }
     c.skipSpaceAndComments();
     c.expect(')');
