@@ -51,7 +51,7 @@ Usage
 #include "stageLog.H"
 #include "surfaceRefinement.H"
 #include "tetsToPolyMesh.H"
-#include "VolumeMesher.H"
+#include "partitionVolume.H"
 
 #include <iostream>
 #include <memory>
@@ -82,7 +82,6 @@ int main(int argc, char* argv[])
         writeSettings output;
         std::vector<fieldTemplate> fields;
         std::unique_ptr<Geometry> geometry;
-        std::unique_ptr<VolumeMesher> mesher;
         failTogether(comm, [&]
         {
             requireMoreThanOneRank(comm);
@@ -93,7 +92,6 @@ int main(int argc, char* argv[])
                 fields = readFieldTemplates(args.caseDir() + "/" + output.startTime);
             }
             geometry = Geometry::New(settings.geometryFile);
-            mesher = VolumeMesher::New(settings.volumeMesher);
         });
         std::optional<caseOutput> target;
         failTogether(comm, [&]
@@ -146,17 +144,19 @@ int main(int argc, char* argv[])
         logSurfaceSizes(comm, surface);
         stages.end();
 
-        stages.begin("volume", "Stage 4: volume meshing (" + mesher->name() + ")");
-        TetMesh tets;
+        stages.begin("volume", "Stage 4: volume meshing (" + settings.volumeMesher + ")");
+        partitionVolumeResult volume;
         failTogether(comm, [&]
         {
-            tets = mesher->mesh
+            volume = meshPartitionVolume
             (
-                surface.points, surface.triangles,
-                volumeParameters(settings)
+                settings.volumeMesher, surface.points, surface.triangles,
+                volumeParameters(settings, comm.rank()), comm.rank(),
+                failedSurfaceFile(args.caseDir(), comm.rank())
             );
         });
-        const globalLabel nFineCells = logCellCounts(comm, tets);
+        TetMesh& tets = volume.mesh;
+        const globalLabel nFineCells = logVolumeMeshing(comm, volume);
         stages.end();
 
         stages.begin("numbering", "Stage 5: global point numbering");

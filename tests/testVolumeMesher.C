@@ -5,7 +5,7 @@
 #include "VolumeMesher.H"
 #include "Geometry.H"
 #include "netgenInterface.H"
-#include "error.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
@@ -16,35 +16,12 @@
 #include <map>
 
 using namespace pmsh;
+using namespace pmsh::test;
 
 namespace
 {
 
 const std::string dataDir = std::string(PMSH_TEST_DATA) + "/geometry/";
-
-
-template<class F>
-std::string fatalMessage(F f)
-{
-    try
-    {
-        f();
-    }
-    catch (const FatalError& e)
-    {
-        return e.message();
-    }
-    return "";
-}
-
-
-#define EXPECT_FATAL(expr, phrase)                                            \
-    {                                                                         \
-        const std::string m_ = fatalMessage([&]{ expr; });                    \
-        EXPECT_NE(m_.find(phrase), std::string::npos)                         \
-            << "expected a FatalError containing \"" << phrase                \
-            << "\", got \"" << m_ << "\"";                                    \
-    }
 
 
 struct surface
@@ -129,11 +106,13 @@ surface icosphere(int levels)
 
 TEST(VolumeMesher, selection)
 {
-    EXPECT_EQ(VolumeMesher::names(), std::vector<std::string>{"netgen"});
+    EXPECT_EQ(VolumeMesher::names(), (std::vector<std::string>{"netgen", "hxt"}));
     EXPECT_EQ(VolumeMesher::New("netgen")->name(), "netgen");
-    const std::string m = fatalMessage([]{ VolumeMesher::New("tetgen"); });
+    EXPECT_EQ(VolumeMesher::New("hxt")->name(), "hxt");
+    const std::string m = errorOf([]{ VolumeMesher::New("tetgen"); });
     EXPECT_NE(m.find("Unknown volumeMesher \"tetgen\""), std::string::npos) << m;
     EXPECT_NE(m.find("netgen"), std::string::npos) << m;
+    EXPECT_NE(m.find("hxt"), std::string::npos) << m;
 }
 
 
@@ -198,7 +177,7 @@ TEST(netgenVolumeMesher, badSurfaces)
 
         // Netgen itself, without the check, fails with an exception that
         // becomes a FatalError (not a crash)
-        const std::string m = fatalMessage([&]
+        const std::string m = errorOf([&]
         {
             ng::surfaceVolumeMesh(s.points, s.triangles, ng::meshParameters(), "a sphere with a hole");
         });
@@ -265,7 +244,7 @@ TEST(verifyVolumeMesh, detectsBrokenContracts)
     {
         TetMesh m = good;
         m.tets.pop_back();
-        const std::string msg = fatalMessage([&]{ verifyVolumeMesh(s.points, s.triangles, m, "missing"); });
+        const std::string msg = errorOf([&]{ verifyVolumeMesh(s.points, s.triangles, m, "missing"); });
         EXPECT_FALSE(msg.empty());
     }
     {

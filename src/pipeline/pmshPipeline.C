@@ -54,9 +54,14 @@ void pmsh::checkNoFoldedTriangles
 }
 
 
-pmsh::volumeMeshParameters pmsh::volumeParameters(const meshSettings& settings)
+pmsh::volumeMeshParameters pmsh::volumeParameters
+(
+    const meshSettings& settings,
+    int rank
+)
 {
     volumeMeshParameters p;
+    p.what = "the surface of partition " + std::to_string(rank);
     p.maxCellSize = settings.maxCellSize/double(1 << settings.refinementLevels);
     p.grading = settings.grading;
     p.optimisationSteps = settings.optimisationSteps;
@@ -158,8 +163,25 @@ void pmsh::logSurfaceSizes(const Communicator& comm, const FineSurface& surface)
 }
 
 
-pmsh::globalLabel pmsh::logCellCounts(const Communicator& comm, const TetMesh& tets)
+std::string pmsh::failedSurfaceFile(const std::string& caseDir, int rank)
 {
+    return caseDir + "/postProcessing/pmshFoam/failedPartition" + std::to_string(rank) + ".stl";
+}
+
+
+pmsh::globalLabel pmsh::logVolumeMeshing
+(
+    const Communicator& comm,
+    const partitionVolumeResult& volume
+)
+{
+    const TetMesh& tets = volume.mesh;
+    if (volume.attempts > 1)
+    {
+        Pout()
+            << "    partition " << comm.rank() << " meshed by " << volume.backend
+            << " at attempt " << volume.attempts << '\n';
+    }
     const globalLabel nCells = comm.sum(std::int64_t(tets.tets.size()));
     const minAvgMax n = reduceMinAvgMax(comm, double(tets.tets.size()));
     Info() << std::fixed << std::setprecision(0);

@@ -11,11 +11,29 @@ import filecmp
 import os
 import re
 import sys
+import time
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from tutorialCase import PolyMeshFiles, cells_in_checkmesh_log  # noqa: E402
 from testSerialTutorials import CaseTest  # noqa: E402
+
+
+def snapshot(case_dir):
+    """{relative path: bytes} of pmshFoam's output: processor*/ and
+    system/decomposeParDict."""
+    files = {}
+    with open(os.path.join(case_dir, "system/decomposeParDict"), "rb") as f:
+        files["system/decomposeParDict"] = f.read()
+    for top in sorted(os.listdir(case_dir)):
+        if not top.startswith("processor"):
+            continue
+        for root, _, names in os.walk(os.path.join(case_dir, top)):
+            for name in names:
+                path = os.path.join(root, name)
+                with open(path, "rb") as f:
+                    files[os.path.relpath(path, case_dir)] = f.read()
+    return files
 
 
 def write_list_file(path, cls, obj, items, fmt):
@@ -44,9 +62,9 @@ class ParallelCaseTest(CaseTest):
         self.assertRegex(text, r"Coupled point location match.*OK")
         return c, cells_in_checkmesh_log(text)
 
-    def full_cycle(self, name, np, r):
+    def full_cycle(self, name, np, r, backend="netgen"):
         """Mesh, check, solve, reconstruct mesh and fields."""
-        c, cells = self.mesh_parallel(name, np, r)
+        c, cells = self.mesh_parallel(name, np, r, volumeMesher=backend)
         _, log = c.run("simpleFoam", np=np)
         self.assertRegex(log, r"(?m)^End")
         c.run("reconstructParMesh", "-constant")
@@ -58,10 +76,10 @@ class ParallelCaseTest(CaseTest):
         return c
 
 
-def make_cycle_test(name, np, r):
+def make_cycle_test(name, np, r, backend):
     def test(self):
-        self.full_cycle(name, np, r)
-    test.__name__ = "test_np%d_r%d" % (np, r)
+        self.full_cycle(name, np, r, backend)
+    test.__name__ = "test_np%d_r%d%s" % (np, r, "" if backend == "netgen" else "_" + backend)
     return test
 
 
@@ -80,8 +98,9 @@ class sphereSTL(ParallelCaseTest):
 for cls in (sphere, shaft, sphereSTL):
     for np in (2, 3, 4):
         for r in (1, 2):
-            t = make_cycle_test(cls.__name__, np, r)
-            setattr(cls, t.__name__, t)
+            for backend in ("netgen", "hxt"):
+                t = make_cycle_test(cls.__name__, np, r, backend)
+                setattr(cls, t.__name__, t)
 
 
 class parallelRun(ParallelCaseTest):
@@ -113,6 +132,24 @@ class parallelRun(ParallelCaseTest):
             _, n = self.mesh_parallel("sphere", np, 2)
             self.assertLess(abs(n - nSerial) / nSerial, 0.15,
                             "%d cells on %d ranks vs %d serial" % (n, np, nSerial))
+
+    def test_oneRankFailingStopsAllRanksAndKeepsThePreviousOutput(self):
+        np = 3
+        c = self.case("sphere", refinementLevels=1)
+        c.run("pmshFoam", np=np)
+        before = snapshot(c.dir)
+        c.set_entry("system/pmshDict", "maxCellSize", 0.2)
+        start = time.time()
+        code, log = c.run("pmshFoam", "-overwrite", np=np, check=False, timeout=300,
+                          env={"PMSH_TEST_FAIL_VOLUME_RANK": "1"})
+        elapsed = time.time() - start
+        self.assertNotEqual(code, 0, log)
+        self.assertIn("FOAM FATAL ERROR", log)
+        self.assertIn("partition 1", log)
+        self.assertLess(elapsed, 120, "ranks did not stop together promptly")
+        self.assertTrue(c.exists("postProcessing/pmshFoam/failedPartition1.stl"))
+        self.assertEqual(snapshot(c.dir), before, "previous output changed")
+        self.assertEqual([f for f in os.listdir(c.dir) if f.startswith(".")], [])
 
     def test_parallelOnOneRankIsAClearError(self):
         c = self.case("sphere")

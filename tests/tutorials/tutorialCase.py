@@ -65,7 +65,7 @@ class TutorialCase:
 
     # -- running ----------------------------------------------------------
 
-    def run(self, *command, np=1, log=None, check=True):
+    def run(self, *command, np=1, log=None, check=True, env=None, timeout=1800):
         """Run an OpenFOAM-style application on the case (in parallel when
         np > 1) with its output in log.<app>; returns (exit code, log)."""
         app = command[0]
@@ -73,9 +73,11 @@ class TutorialCase:
         argv += ["-case", self.dir]
         if np > 1:
             argv = ["mpirun", "--oversubscribe", "-np", str(np)] + argv + ["-parallel"]
+        environment = openfoam_environment()
+        environment.update(env or {})
         proc = subprocess.run(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, env=openfoam_environment(),
-                              cwd=self.dir, timeout=1800)
+                              stderr=subprocess.STDOUT, env=environment,
+                              cwd=self.dir, timeout=timeout)
         text = proc.stdout.decode(errors="replace")
         with open(os.path.join(self.dir, log or "log." + app), "w") as f:
             f.write(text)

@@ -1,0 +1,133 @@
+#include "partitionVolume.H"
+#include "error.H"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+
+namespace
+{
+
+using namespace pmsh;
+
+// PMSH_TEST_FAIL_VOLUME_RANK = "<rank>" (every backend) or
+// "<rank>:<backend>" (that backend only)
+bool injectedFailure(int rank, const std::string& backend)
+{
+    const char* value = std::getenv("PMSH_TEST_FAIL_VOLUME_RANK");
+    if (!value)
+    {
+        return false;
+    }
+    const std::string spec(value);
+    const auto colon = spec.find(':');
+    return std::atoi(spec.c_str()) == rank
+        && (colon == std::string::npos || spec.substr(colon + 1) == backend);
+}
+
+struct attempt
+{
+    std::string backend;
+    volumeMeshParameters parameters;
+    std::string change;     // what differs from the first attempt
+};
+
+} // End anonymous namespace
+
+
+void pmsh::writeSurfaceStl
+(
+    const std::string& fileName,
+    const std::string& solidName,
+    const std::vector<point>& points,
+    const std::vector<triFace>& triangles
+)
+{
+    const std::filesystem::path path(fileName);
+    if (path.has_parent_path())
+    {
+        std::filesystem::create_directories(path.parent_path());
+    }
+    std::ofstream os(fileName);
+    os  << std::setprecision(17) << "solid " << solidName << '\n';
+    for (const triFace& t : triangles)
+    {
+        const vector n = cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]);
+        const double mag = std::sqrt(magSqr(n));
+        const double s = mag > 0 ? 1/mag : 0;
+        os  << "  facet normal " << s*n[0] << ' ' << s*n[1] << ' ' << s*n[2] << '\n'
+            << "    outer loop\n";
+        for (label p : t)
+        {
+            os  << "      vertex " << points[p][0] << ' ' << points[p][1] << ' '
+                << points[p][2] << '\n';
+        }
+        os  << "    endloop\n  endfacet\n";
+    }
+    os  << "endsolid " << solidName << '\n';
+}
+
+
+pmsh::partitionVolumeResult pmsh::meshPartitionVolume
+(
+    const std::string& backend,
+    const std::vector<point>& surfacePoints,
+    const std::vector<triFace>& surfaceTriangles,
+    const volumeMeshParameters& parameters,
+    int rank,
+    const std::string& failedSurfaceFile
+)
+{
+    // The attempts, in order: as asked; without optimisation (Netgen's
+    // optimiser is where most of its rare crashes and hangs live); with a
+    // tighter interior size; then the other backend
+    const std::string other = backend == "netgen" ? "hxt" : "netgen";
+    std::vector<attempt> attempts{{backend, parameters, ""}};
+    volumeMeshParameters p = parameters;
+    if (p.optimisationSteps > 0)
+    {
+        p.optimisationSteps = 0;
+        attempts.push_back({backend, p, "optimisationSteps 0"});
+    }
+    p.grading = std::min(p.grading, 0.2);
+    attempts.push_back({backend, p, "optimisationSteps 0, grading <= 0.2"});
+    attempts.push_back({other, parameters, "the " + other + " backend"});
+
+    msg failures;
+    for (std::size_t a = 0; a < attempts.size(); ++a)
+    {
+        try
+        {
+            if (injectedFailure(rank, attempts[a].backend))
+            {
+                throw FatalError("failure injected by PMSH_TEST_FAIL_VOLUME_RANK");
+            }
+            const auto mesher = VolumeMesher::New(attempts[a].backend);
+            partitionVolumeResult result;
+            result.mesh = mesher->mesh(surfacePoints, surfaceTriangles, attempts[a].parameters);
+            result.backend = attempts[a].backend;
+            result.attempts = int(a) + 1;
+            return result;
+        }
+        catch (const FatalError& e)
+        {
+            failures
+                << "\n  attempt " << a + 1 << " (" << attempts[a].backend
+                << (attempts[a].change.empty() ? "" : "; " + attempts[a].change)
+                << "): " << e.message();
+        }
+    }
+
+    writeSurfaceStl(failedSurfaceFile, "partition" + std::to_string(rank), surfacePoints, surfaceTriangles);
+    throw FatalError
+    (
+        msg() << "Volume meshing of partition " << rank << " failed in all "
+            << attempts.size() << " attempts:" << std::string(failures) << "\n"
+            << "Its surface is written to " << failedSurfaceFile << " for diagnosis.\n"
+            << "Try a smaller maxCellSize (a finer coarse mesh) or another"
+            << " volumeMesher in system/pmshDict.",
+        "meshPartitionVolume"
+    );
+}
