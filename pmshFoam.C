@@ -129,16 +129,9 @@ int main(int argc, char* argv[])
         FineSurface surface;
         failTogether(comm, [&]
         {
-            const coarsePartSurface partSurface =
-                partitionSurface(coarse, cellPart, comm.rank());
-            surface = refineSurface
+            surface = refinePartSurface
             (
-                coarse, partSurface, boundaryEdgeSurfaces(coarse),
-                geometry.get(), settings.refinementLevels
-            );
-            checkNoFoldedTriangles
-            (
-                coarse, partSurface, surface, settings.refinementLevels
+                coarse, cellPart, comm.rank(), geometry.get(), settings.refinementLevels
             );
         });
         logSurfaceSizes(comm, surface);

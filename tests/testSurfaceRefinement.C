@@ -5,6 +5,7 @@
 #include "Geometry.H"
 #include "boundaryRegion.H"
 #include "surfaceChecks.H"
+#include "error.H"
 
 #include <gtest/gtest.h>
 
@@ -293,5 +294,42 @@ TEST(surfaceRefinement, interfaceVerticesAreBitIdenticalOnBothParts)
     {
         std::swap(t[1], t[2]);
         EXPECT_EQ(t1.count(t), 1u);
+    }
+}
+
+
+namespace
+{
+
+// A "geometry" whose projection throws new points through the centre: the
+// refined triangles turn against their coarse faces
+class foldingGeometry : public analyticSphere
+{
+public:
+    point projectToSurface(const point& p, label) const override
+    {
+        return (-1.0/std::sqrt(magSqr(p)))*p;
+    }
+};
+
+} // End anonymous namespace
+
+
+TEST(surfaceRefinement, projectionThatFoldsTheSurfaceIsAFatalErrorSayingWhatToDo)
+{
+    const CoarseMesh m = octahedron();
+    const analyticSphere sphere;
+    EXPECT_NO_THROW(refinePartSurface(m, {}, 0, &sphere, 2));
+
+    const foldingGeometry folding;
+    try
+    {
+        refinePartSurface(m, {}, 0, &folding, 2);
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("folded"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("maxCellSize"), std::string::npos) << e.what();
     }
 }

@@ -31,29 +31,6 @@ void pmsh::requireMoreThanOneRank(const Communicator& comm)
 }
 
 
-void pmsh::checkNoFoldedTriangles
-(
-    const CoarseMesh& coarse,
-    const coarsePartSurface& partSurface,
-    const FineSurface& fine,
-    int levels
-)
-{
-    const label nFolded = countFoldedTriangles(coarse, partSurface, fine, levels);
-    if (nFolded > 0)
-    {
-        throw FatalError
-        (
-            msg() << nFolded << " refined surface triangles folded over when"
-                << " projected onto the geometry: the coarse mesh is too coarse"
-                << " for the curvature of the geometry.\n"
-                << "Reduce maxCellSize in system/pmshDict.",
-            "checkNoFoldedTriangles"
-        );
-    }
-}
-
-
 pmsh::volumeMeshParameters pmsh::volumeParameters
 (
     const meshSettings& settings,

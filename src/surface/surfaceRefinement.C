@@ -1,6 +1,7 @@
 #include "surfaceRefinement.H"
 #include "Geometry.H"
 #include "error.H"
+#include "partitionSurface.H"
 
 #include <algorithm>
 #include <tuple>
@@ -321,4 +322,34 @@ pmsh::label pmsh::countFoldedTriangles
         }
     }
     return nFolded;
+}
+
+
+pmsh::FineSurface pmsh::refinePartSurface
+(
+    const CoarseMesh& coarse,
+    const std::vector<label>& cellPart,
+    label part,
+    const Geometry* geometry,
+    int levels
+)
+{
+    const coarsePartSurface partSurface = partitionSurface(coarse, cellPart, part);
+    FineSurface fine = refineSurface
+    (
+        coarse, partSurface, boundaryEdgeSurfaces(coarse), geometry, levels
+    );
+    const label nFolded = countFoldedTriangles(coarse, partSurface, fine, levels);
+    if (nFolded > 0)
+    {
+        throw FatalError
+        (
+            msg() << nFolded << " refined surface triangles of part " << part
+                << " folded over when projected onto the geometry: the coarse"
+                << " mesh is too coarse for the curvature of the geometry.\n"
+                << "Reduce maxCellSize in system/pmshDict.",
+            "refinePartSurface"
+        );
+    }
+    return fine;
 }
