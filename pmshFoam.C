@@ -43,6 +43,7 @@ Usage
 #include "Geometry.H"
 #include "globalNumbering.H"
 #include "Info.H"
+#include "memoryEstimate.H"
 #include "meshSettings.H"
 #include "partitionCoarseMesh.H"
 #include "polyMeshWriter.H"
@@ -107,6 +108,11 @@ int main(int argc, char* argv[])
             comm, *geometry, {settings.maxCellSize, settings.grading}
         );
         logCoarseMesh(coarse);
+        failTogether(comm, [&]
+        {
+            // Stop before the expensive stages if the fine mesh cannot fit
+            checkMemoryEstimate(comm, settings, coarse.nCells());
+        });
         const std::vector<polyPatchInfo> patches = physicalPatches(coarse, settings);
         failTogether(comm, [&]
         {

@@ -7,14 +7,101 @@
 #include "error.H"
 
 #include <algorithm>
+#include <fstream>
 #include <map>
+#include <regex>
+
+// * * * * * * * * * * * * * * * Local helpers  * * * * * * * * * * * * * * //
+
+namespace
+{
+
+//- Open the model. Netgen reports an undefined top-level object ("tlo x;")
+//  only after reading past it, with the line of the next token (often one
+//  past the end of the file): give the line of the tlo and the solids
+//  that are defined instead.
+pmsh::ng::csgModel* openModel(const std::string& fileName)
+{
+    try
+    {
+        return new pmsh::ng::csgModel(fileName);
+    }
+    catch (const pmsh::FatalError& e)
+    {
+        std::smatch undefined;
+        const std::string message = e.message();
+        if
+        (
+           !std::regex_search
+            (
+                message, undefined,
+                std::regex("Parsing error in line [0-9]+: Top-Level-Object"
+                           " (\\S+) not defined")
+            )
+        )
+        {
+            throw;
+        }
+        const std::string name = undefined[1];
+
+        std::ifstream is(fileName);
+        std::string quoted;
+        for (char c : name)
+        {
+            if (std::string("^$\\.*+?()[]{}|").find(c) != std::string::npos)
+            {
+                quoted += '\\';
+            }
+            quoted += c;
+        }
+        const std::regex tlo("^\\s*tlo\\s+" + quoted + "(\\s|;|$)");
+        const std::regex solid("^\\s*solid\\s+([A-Za-z_][A-Za-z0-9_]*)\\s*=");
+        int tloLine = 0;
+        int lineNo = 0;
+        std::string solids;
+        for (std::string line; std::getline(is, line); )
+        {
+            ++lineNo;
+            std::smatch m;
+            if (!tloLine && std::regex_search(line, tlo))
+            {
+                tloLine = lineNo;
+            }
+            if (std::regex_search(line, m, solid))
+            {
+                solids += (solids.empty() ? "" : ", ") + m[1].str();
+            }
+        }
+        std::string where = message.substr(0, undefined.position(0));
+        if (tloLine)
+        {
+            where += "Parsing error in line " + std::to_string(tloLine) + ": ";
+        }
+        else
+        {
+            where += undefined.str(0).substr(0, undefined.str(0).find(':') + 2);
+        }
+        throw pmsh::FatalError
+        (
+            pmsh::msg()
+                << where << "top-level object (tlo) " << name
+                << " is not a solid defined before it\n"
+                << "Defined solids: "
+                << (solids.empty() ? std::string("none") : solids),
+            e.where()
+        );
+    }
+}
+
+} // End anonymous namespace
+
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 pmsh::csgGeometry::csgGeometry(const std::string& fileName)
 :
     fileName_(fileName),
-    model_(new ng::csgModel(fileName))
+    model_(openModel(fileName))
 {}
 
 

@@ -233,11 +233,15 @@ void checkGeometry(const dictionary& d, const std::string& caseDir, meshSettings
     const std::string ext = lowerCase(fs::path(path).extension().string());
     if (ext != ".geo" && ext != ".stl")
     {
+        const std::string given = fs::path(path).extension().string();
         throw FatalError
         (
-            msg() << d.entryInfo(*e) << " is \"" << name << "\": the file"
-                << " extension '" << fs::path(path).extension().string()
-                << "' is not supported\n"
+            msg() << d.entryInfo(*e) << " is \"" << name << "\": "
+                << (
+                       given.empty()
+                     ? std::string("the file name has no extension")
+                     : "the file extension '" + given + "' is not supported"
+                   ) << '\n'
                 << "Valid geometry file extensions are: .geo (Netgen CSG),"
                 << " .stl (ascii or binary STL), in any letter case",
             where
@@ -454,6 +458,10 @@ meshSettings readMeshSettings
         "Valid values are integers 0 <= refinementLevels <= 10"
         " (each level multiplies the number of cells by about 8)"
     );
+    if (const entry* e = d.findEntry("refinementLevels", false))
+    {
+        s.refinementLevelsLine = e->line();
+    }
     s.volumeMesher = choice(d, "volumeMesher", "netgen", VolumeMesher::names());
     s.optimisationSteps = boundedInteger
     (

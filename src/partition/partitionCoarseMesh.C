@@ -398,9 +398,9 @@ std::vector<pmsh::label> pmsh::partitionCells(const CoarseMesh& coarse, label nP
         throw FatalError
         (
             msg() << "Cannot split a coarse mesh of " << nCells << " cells into "
-                << nParts << " parts.\n"
-                << "Run on at most " << nCells << " ranks, or reduce maxCellSize"
-                << " in system/pmshDict for a finer coarse mesh.",
+                << nParts << " parts: every rank needs at least one coarse cell.\n"
+                << "Reduce maxCellSize in system/pmshDict for a finer coarse mesh"
+                << (nCells > 1 ? ", or run on at most " + std::to_string(nCells) + " ranks." : "."),
             "partitionCells"
         );
     }

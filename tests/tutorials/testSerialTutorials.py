@@ -1,6 +1,6 @@
 """Serial pmshFoam end to end: every tutorial meshed at refinement levels
 0..2, ascii and binary, judged by OpenFOAM's own checkMesh; the refined
-boundary lies on the geometry; bad input stops cleanly and writes nothing.
+boundary lies on the geometry. (Bad input: testBadInput.py.)
 
 Run one test:  python3 testSerialTutorials.py sphere.test_meshOkAtEachLevelAscii
 """
@@ -106,62 +106,6 @@ class sphereSTL(CaseTest):
 
     def test_meshOkAtEachLevel(self):
         self.mesh_levels("sphereSTL", [0, 1, 2])
-
-
-class badInput(CaseTest):
-    """Each must stop with FOAM FATAL ERROR naming the problem, exit
-    non-zero and write nothing."""
-
-    def expect_fatal(self, case, *phrases):
-        code, log = case.run("pmshFoam", check=False)
-        self.assertNotEqual(code, 0, log)
-        self.assertIn("FOAM FATAL ERROR", log)
-        for phrase in phrases:
-            self.assertIn(phrase, log)
-        self.assertFalse(case.exists("constant/polyMesh"), "a mesh was written")
-        leftovers = [f for f in os.listdir(os.path.join(case.dir, "constant"))
-                     if f.startswith(".")]
-        self.assertEqual(leftovers, [], "temporary output left behind")
-
-    def test_missingGeometryFile(self):
-        c = self.case("sphere", geometry='"constant/geometry/nothere.geo"')
-        self.expect_fatal(c, "nothere.geo")
-
-    def test_unknownVolumeMesher(self):
-        c = self.case("sphere", volumeMesher="tetgen")
-        self.expect_fatal(c, "tetgen", "netgen")
-
-    def test_nonPositiveMaxCellSize(self):
-        c = self.case("sphere", maxCellSize=0)
-        self.expect_fatal(c, "maxCellSize")
-
-    def test_stlThatIsNotClosed(self):
-        c = self.case("sphereSTL")
-        stl = os.path.join(c.dir, "constant/geometry/sphere.stl")
-        with open(stl) as f:
-            text = f.read()
-        # Drop the first facet
-        start = text.index("facet")
-        end = text.index("endfacet", start) + len("endfacet")
-        with open(stl, "w") as f:
-            f.write(text[:start] + text[end:])
-        self.expect_fatal(c, "sphere.stl", "not closed")
-
-    def test_existingMeshIsKeptWithoutOverwrite(self):
-        c = self.case("sphere", refinementLevels=0)
-        c.run("pmshFoam")
-        with open(os.path.join(c.dir, "constant/polyMesh/points"), "rb") as f:
-            before = f.read()
-        c.set_entry("system/pmshDict", "maxCellSize", 0.2)
-        code, log = c.run("pmshFoam", check=False)
-        self.assertNotEqual(code, 0)
-        self.assertIn("-overwrite", log)
-        with open(os.path.join(c.dir, "constant/polyMesh/points"), "rb") as f:
-            self.assertEqual(f.read(), before)
-        c.run("pmshFoam", "-overwrite")
-        with open(os.path.join(c.dir, "constant/polyMesh/points"), "rb") as f:
-            self.assertNotEqual(f.read(), before)
-        c.check_mesh()
 
 
 if __name__ == "__main__":

@@ -34,7 +34,9 @@ class TutorialCase:
         self.root = tempfile.mkdtemp(prefix="pmshFoam-%s-" % name)
         self.dir = os.path.join(self.root, name)
         shutil.copytree(os.path.join(TUTORIALS, name), self.dir,
-                        ignore=shutil.ignore_patterns("processor*", "log.*", "polyMesh"))
+                        ignore=shutil.ignore_patterns(
+                            "processor*", "log.*", "polyMesh", "postProcessing",
+                            "decomposeParDict", "[1-9]*", ".*"))
         self.pmshFoam = os.environ.get("PMSH_BINARY") or shutil.which("pmshFoam")
         if not self.pmshFoam:
             raise RuntimeError("pmshFoam binary not found (PMSH_BINARY or PATH)")
