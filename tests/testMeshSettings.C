@@ -77,6 +77,7 @@ TEST_F(caseDir, readsEveryEntry)
         "refinementLevels  3;\n"
         "volumeMesher      netgen;\n"
         "optimisationSteps 7;\n"
+        "volumeMesherThreads 2;\n"
         "labelSize         64;\n"
         "patches\n{\n    inlet { type patch; }\n}\n"
     );
@@ -88,6 +89,7 @@ TEST_F(caseDir, readsEveryEntry)
     EXPECT_EQ(s.refinementLevels, 3);
     EXPECT_EQ(s.volumeMesher, "netgen");
     EXPECT_EQ(s.optimisationSteps, 7);
+    EXPECT_EQ(s.volumeMesherThreads, 2);
     EXPECT_EQ(s.labelBits, 64);
     EXPECT_EQ(s.patchType("inlet"), "patch");
 }
@@ -101,6 +103,7 @@ TEST_F(caseDir, optionalEntriesHaveTheirDefaults)
     EXPECT_EQ(s.refinementLevels, 1);
     EXPECT_EQ(s.volumeMesher, "netgen");
     EXPECT_EQ(s.optimisationSteps, 3);
+    EXPECT_EQ(s.volumeMesherThreads, 1);
     EXPECT_EQ(s.labelBits, 32);
     EXPECT_EQ(s.patchType("anything"), "wall");
 }
@@ -266,6 +269,12 @@ TEST_F(caseDir, integerEntriesMustBeIntegersInRange)
         const std::string err = errorFor(minimal() + "optimisationSteps " + bad + ";\n");
         EXPECT_HAS(err, "Entry 'optimisationSteps'");
         EXPECT_HAS(err, "0 <= optimisationSteps <= 100");
+    }
+    for (const char* bad : {"0", "257", "1.5"})
+    {
+        const std::string err = errorFor(minimal() + "volumeMesherThreads " + bad + ";\n");
+        EXPECT_HAS(err, "Entry 'volumeMesherThreads'");
+        EXPECT_HAS(err, "1 <= volumeMesherThreads <= 256");
     }
     const std::string err = errorFor(minimal() + "labelSize 48;\n");
     EXPECT_HAS(err, "Entry 'labelSize'");

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -178,4 +179,57 @@ TEST(partitionVolume, injectedFailureOnlyHitsTheNamedRank)
     envVar fail("5");
     EXPECT_NO_THROW(meshPartitionVolume("hxt", pts, tris, {}, 4, tempFile("x.stl")));
     EXPECT_THROW(meshPartitionVolume("hxt", pts, tris, {}, 5, tempFile("y.stl")), FatalError);
+}
+
+
+TEST(partitionVolume, multithreadedHxtGivesAConformingMeshOrFallsBackToOneThread)
+{
+    std::vector<point> pts;
+    std::vector<triFace> tris;
+    icosphere(pts, tris);
+    volumeMeshParameters p;
+    p.threads = 2;
+    for (int run = 0; run < 5; ++run)
+    {
+        const partitionVolumeResult r =
+            meshPartitionVolume("hxt", pts, tris, p, 0, tempFile("t.stl"));
+        EXPECT_EQ(r.backend, "hxt");
+        EXPECT_LE(r.attempts, 2);
+        // verifyVolumeMesh (conformity included) passed inside; check again
+        EXPECT_NO_THROW(verifyVolumeMesh(pts, tris, r.mesh, "hxt with 2 threads"));
+    }
+}
+
+
+TEST(verifyVolumeMesh, rejectsAMeshWithADuplicatedInteriorPoint)
+{
+    std::vector<point> pts;
+    std::vector<triFace> tris;
+    icosphere(pts, tris);
+    volumeMeshParameters p;
+    p.maxCellSize = 0.3;
+    TetMesh m = VolumeMesher::New("netgen")->mesh(pts, tris, p);
+    ASSERT_GT(m.points.size(), pts.size()) << "no interior point to duplicate";
+
+    // Give one tet its own copy of an interior point: volumes still add up
+    const label interior = label(pts.size());
+    for (tetCell& t : m.tets)
+    {
+        auto it = std::find(t.begin(), t.end(), interior);
+        if (it != t.end())
+        {
+            m.points.push_back(m.points[interior]);
+            *it = label(m.points.size() - 1);
+            break;
+        }
+    }
+    try
+    {
+        verifyVolumeMesh(pts, tris, m, "a mesh with a split point");
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("not conforming"), std::string::npos) << e.what();
+    }
 }

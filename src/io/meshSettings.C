@@ -360,7 +360,8 @@ std::vector<std::string> meshSettingsEntries()
     return
     {
         "geometry", "maxCellSize", "grading", "refinementLevels",
-        "volumeMesher", "optimisationSteps", "patches", "labelSize"
+        "volumeMesher", "optimisationSteps", "volumeMesherThreads", "patches",
+        "labelSize"
     };
 }
 
@@ -467,6 +468,12 @@ meshSettings readMeshSettings
     (
         d, "optimisationSteps", 3, 0, 100,
         "Valid values are integers 0 <= optimisationSteps <= 100"
+    );
+    s.volumeMesherThreads = boundedInteger
+    (
+        d, "volumeMesherThreads", 1, 1, 256,
+        "Valid values are integers 1 <= volumeMesherThreads <= 256"
+        " (threads per rank; 1 with one rank per core)"
     );
 
     {

@@ -42,6 +42,7 @@ pmsh::volumeMeshParameters pmsh::volumeParameters
     p.maxCellSize = settings.maxCellSize/double(1 << settings.refinementLevels);
     p.grading = settings.grading;
     p.optimisationSteps = settings.optimisationSteps;
+    p.threads = settings.volumeMesherThreads;
     return p;
 }
 

@@ -405,6 +405,49 @@ void pmsh::verifyVolumeMesh
             function
         );
     }
+
+    // Conforming: every tet face is shared with exactly one other tet or is
+    // one surface triangle. Volumes add up even when a backend duplicates an
+    // interior point (Gmsh 4.8's multithreaded HXT does), leaving faces that
+    // match nothing: this is what catches it.
+    std::vector<triFace> faces;
+    faces.reserve(4*result.tets.size() + surfaceTriangles.size());
+    auto sortedFace = [](triFace f)
+    {
+        std::sort(f.begin(), f.end());
+        return f;
+    };
+    for (const tetCell& t : result.tets)
+    {
+        for (const triFace& f : outwardTetFaces(t))
+        {
+            faces.push_back(sortedFace(f));
+        }
+    }
+    for (const triFace& f : surfaceTriangles)
+    {
+        faces.push_back(sortedFace(f));     // pairs with its one tet face
+    }
+    std::sort(faces.begin(), faces.end());
+    std::size_t nUnmatched = 0;
+    for (std::size_t i = 0; i < faces.size(); )
+    {
+        std::size_t j = i + 1;
+        while (j < faces.size() && faces[j] == faces[i]) ++j;
+        nUnmatched += (j - i != 2);
+        i = j;
+    }
+    if (nUnmatched > 0)
+    {
+        throw FatalError
+        (
+            msg()
+                << what << " is not conforming: " << nUnmatched << " faces are"
+                << " not shared by exactly two tets (or one tet and the surface)",
+            function
+        );
+    }
+
 }
 
 

@@ -111,6 +111,10 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::mesh
         gmsh::model::geo::synchronize();
 
         gmsh::option::setNumber("Mesh.Algorithm3D", 10);       // HXT
+        // Quirk: with more than one thread, Debian's Gmsh 4.8.4 HXT now and
+        // then returns a duplicated interior node (faces matching nothing);
+        // verifyVolumeMesh catches it and meshPartitionVolume retries with
+        // one thread
         gmsh::option::setNumber("General.NumThreads", parameters.threads);
         gmsh::option::setNumber("Mesh.MeshSizeMax", parameters.maxCellSize);
         // Interior size grows from the surface edge lengths, as Netgen's.

@@ -80,12 +80,18 @@ pmsh::partitionVolumeResult pmsh::meshPartitionVolume
     const std::string& failedSurfaceFile
 )
 {
-    // The attempts, in order: as asked; without optimisation (Netgen's
+    // The attempts, in order: as asked; single-threaded; without optimisation (Netgen's
     // optimiser is where most of its rare crashes and hangs live); with a
     // tighter interior size; then the other backend
     const std::string other = backend == "netgen" ? "hxt" : "netgen";
     std::vector<attempt> attempts{{backend, parameters, ""}};
     volumeMeshParameters p = parameters;
+    if (p.threads > 1)
+    {
+        // Gmsh 4.8's multithreaded HXT can duplicate interior points
+        p.threads = 1;
+        attempts.push_back({backend, p, "1 thread"});
+    }
     if (p.optimisationSteps > 0)
     {
         p.optimisationSteps = 0;
