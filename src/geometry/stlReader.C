@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "stlReader.H"
+#include "surfaceTopology.H"
 #include "error.H"
 
 #include <algorithm>
@@ -593,69 +594,11 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
         }
     }
 
-    // Edge uses: sort directed edges by their undirected key
-    struct edgeUse
-    {
-        label lo, hi;
-        bool forward;   // lo -> hi
-    };
-    std::vector<edgeUse> uses;
-    uses.reserve(3*std::size_t(nt));
-    for (const triFace& f : s.triangles)
-    {
-        for (int k = 0; k < 3; ++k)
-        {
-            const label a = f[k];
-            const label b = f[(k + 1) % 3];
-            uses.push_back({std::min(a, b), std::max(a, b), a < b});
-        }
-    }
-    std::sort
-    (
-        uses.begin(), uses.end(),
-        [](const edgeUse& x, const edgeUse& y)
-        {
-            return x.lo != y.lo ? x.lo < y.lo
-                 : x.hi != y.hi ? x.hi < y.hi
-                 : x.forward < y.forward;
-        }
-    );
-
-    label nOpen = 0, nNonManifold = 0, nFlipped = 0;
-    std::string openEdge, nonManifoldEdge, flippedEdge;
-    for (std::size_t i = 0; i < uses.size(); )
-    {
-        std::size_t j = i;
-        int nForward = 0;
-        while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi)
-        {
-            nForward += uses[j].forward;
-            ++j;
-        }
-        const std::size_t n = j - i;
-        if (n == 1)
-        {
-            if (!nOpen++)
-            {
-                openEdge = edgeString(s, uses[i].lo, uses[i].hi);
-            }
-        }
-        else if (n > 2)
-        {
-            if (!nNonManifold++)
-            {
-                nonManifoldEdge = edgeString(s, uses[i].lo, uses[i].hi);
-            }
-        }
-        else if (nForward != 1)
-        {
-            if (!nFlipped++)
-            {
-                flippedEdge = edgeString(s, uses[i].lo, uses[i].hi);
-            }
-        }
-        i = j;
-    }
+    const surfaceEdgeDefects defects = findSurfaceEdgeDefects(s.triangles);
+    auto edge = [&](const std::pair<label, label>& e) { return edgeString(s, e.first, e.second); };
+    const label nOpen = defects.nOpen;
+    const label nNonManifold = defects.nNonManifold;
+    const label nFlipped = defects.nInconsistent;
 
     if (nNonManifold)
     {
@@ -664,7 +607,7 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
             msg()
                 << "STL file \"" << fileName << "\" is not manifold: "
                 << nNonManifold << " edge(s) are used by more than two"
-                << " triangles, e.g. the edge " << nonManifoldEdge
+                << " triangles, e.g. the edge " << edge(defects.firstNonManifold)
                 << ".\nEvery edge of a closed surface must be shared by"
                 << " exactly two triangles",
             function
@@ -677,7 +620,7 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
             msg()
                 << "STL file \"" << fileName << "\" is not closed: " << nOpen
                 << " edge(s) are used by only one triangle, e.g. the edge "
-                << openEdge << ".\nThe surface must enclose a volume: fill"
+                << edge(defects.firstOpen) << ".\nThe surface must enclose a volume: fill"
                 << " the holes (vertices of neighbouring triangles must match"
                 << " exactly)",
             function
@@ -691,7 +634,7 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
                 << "STL file \"" << fileName << "\" is inconsistently"
                 << " oriented: " << nFlipped << " edge(s) are traversed in the"
                 << " same direction by both their triangles (one of the two"
-                << " normals is flipped), e.g. the edge " << flippedEdge
+                << " normals is flipped), e.g. the edge " << edge(defects.firstInconsistent)
                 << ".\nOrient all triangles consistently (normals outward)",
             function
         );

@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "VolumeMesher.H"
+#include "surfaceTopology.H"
 #include "netgenVolumeMesher.H"
 #include "hxtVolumeMesher.H"
 #include "error.H"
@@ -172,57 +173,24 @@ void pmsh::checkClosedSurface
         );
     }
 
-    // Directed edges: each must appear once, with its reverse once
-    struct edgeUse
+    // Closed, manifold, consistently oriented
+    const surfaceEdgeDefects defects = findSurfaceEdgeDefects(triangles);
+    if (!defects.none())
     {
-        label lo, hi;
-        bool forward;
-    };
-    std::vector<edgeUse> uses;
-    uses.reserve(3*triangles.size());
-    for (const triFace& f : triangles)
-    {
-        for (int k = 0; k < 3; ++k)
-        {
-            const label a = f[k];
-            const label b = f[(k + 1) % 3];
-            uses.push_back({std::min(a, b), std::max(a, b), a < b});
-        }
-    }
-    std::sort
-    (
-        uses.begin(), uses.end(),
-        [](const edgeUse& x, const edgeUse& y)
-        {
-            return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi;
-        }
-    );
-    for (std::size_t i = 0; i < uses.size(); )
-    {
-        std::size_t j = i;
-        int nForward = 0;
-        while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi)
-        {
-            nForward += uses[j].forward;
-            ++j;
-        }
-        const std::size_t n = j - i;
-        if (n != 2 || nForward != 1)
-        {
-            const char* problem =
-                n == 1 ? "is not closed: an edge is used by one triangle only"
-              : n > 2 ? "is not manifold: an edge is used by more than two triangles"
-              : "is inconsistently oriented: an edge is traversed twice in the same direction";
-            throw FatalError
-            (
-                msg()
-                    << "Cannot mesh the volume of " << what << ": the surface "
-                    << problem << ", e.g. the edge " << str(points[uses[i].lo])
-                    << '-' << str(points[uses[i].hi]),
-                function
-            );
-        }
-        i = j;
+        const auto [problem, e] =
+            defects.nOpen
+          ? std::make_pair("is not closed: an edge is used by one triangle only", defects.firstOpen)
+          : defects.nNonManifold
+          ? std::make_pair("is not manifold: an edge is used by more than two triangles", defects.firstNonManifold)
+          : std::make_pair("is inconsistently oriented: an edge is traversed twice in the same direction", defects.firstInconsistent);
+        throw FatalError
+        (
+            msg()
+                << "Cannot mesh the volume of " << what << ": the surface "
+                << problem << ", e.g. the edge " << str(points[e.first])
+                << '-' << str(points[e.second]),
+            function
+        );
     }
 
     // Outward: positive enclosed volume (about a point of the surface)
