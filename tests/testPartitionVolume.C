@@ -3,12 +3,14 @@
 // partition that fails everywhere leaves its surface as STL and says so.
 
 #include "partitionVolume.H"
+#include "childProcess.H"
 #include "error.H"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -233,3 +235,49 @@ TEST(verifyVolumeMesh, rejectsAMeshWithADuplicatedInteriorPoint)
         EXPECT_NE(std::string(e.what()).find("not conforming"), std::string::npos) << e.what();
     }
 }
+
+
+TEST(meshInChildProcess, returnsTheChildsMeshBitForBit)
+{
+    std::vector<point> pts;
+    std::vector<triFace> tris;
+    icosphere(pts, tris);
+    const TetMesh direct = VolumeMesher::New("netgen")->mesh(pts, tris, {});
+    const TetMesh child = meshInChildProcess
+    (
+        [&] { return VolumeMesher::New("netgen")->mesh(pts, tris, {}); }, "an icosphere"
+    );
+    EXPECT_EQ(child.points, direct.points);
+    EXPECT_EQ(child.tets, direct.tets);
+}
+
+
+TEST(meshInChildProcess, aCrashInTheChildIsAFatalErrorNamingTheSignal)
+{
+    try
+    {
+        meshInChildProcess([]() -> TetMesh { std::raise(SIGSEGV); return {}; }, "a test surface");
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("crashed on a test surface"), std::string::npos) << m;
+        EXPECT_NE(m.find("signal 11"), std::string::npos) << m;
+    }
+}
+
+
+TEST(meshInChildProcess, aFatalErrorInTheChildKeepsItsMessage)
+{
+    try
+    {
+        meshInChildProcess([]() -> TetMesh { throw FatalError("too many attempts"); }, "x");
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        EXPECT_EQ(std::string(e.what()), "too many attempts");
+    }
+}
+

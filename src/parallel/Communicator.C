@@ -27,6 +27,11 @@ pmsh::Communicator::Communicator(int& argc, char**& argv)
     rank_(0),
     size_(1)
 {
+    // Volume meshing runs in forked children that make no MPI calls (see
+    // childProcess.H): tell Open MPI not to warn about the fork, unless
+    // the user has set it
+    ::setenv("OMPI_MCA_mpi_warn_on_fork", "0", 0);
+
     int provided = 0;
     MPI_Init_thread(&argc, &argv, MPI_THREAD_SINGLE, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);

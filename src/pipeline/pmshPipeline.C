@@ -158,7 +158,8 @@ pmsh::globalLabel pmsh::logVolumeMeshing
     {
         Pout()
             << "    partition " << comm.rank() << " meshed by " << volume.backend
-            << " at attempt " << volume.attempts << '\n';
+            << " at attempt " << volume.attempts << "; earlier attempts:"
+            << volume.failures << '\n';
     }
     const globalLabel nCells = comm.sum(std::int64_t(tets.tets.size()));
     const minAvgMax n = reduceMinAvgMax(comm, double(tets.tets.size()));

@@ -1,4 +1,5 @@
 #include "partitionVolume.H"
+#include "childProcess.H"
 #include "error.H"
 
 #include <cmath>
@@ -101,7 +102,7 @@ pmsh::partitionVolumeResult pmsh::meshPartitionVolume
     attempts.push_back({backend, p, "optimisationSteps 0, grading <= 0.2"});
     attempts.push_back({other, parameters, "the " + other + " backend"});
 
-    msg failures;
+    std::string failures;
     for (std::size_t a = 0; a < attempts.size(); ++a)
     {
         try
@@ -112,14 +113,25 @@ pmsh::partitionVolumeResult pmsh::meshPartitionVolume
             }
             const auto mesher = VolumeMesher::New(attempts[a].backend);
             partitionVolumeResult result;
-            result.mesh = mesher->mesh(surfacePoints, surfaceTriangles, attempts[a].parameters);
+            result.mesh = meshInChildProcess
+            (
+                [&]
+                {
+                    return mesher->mesh
+                    (
+                        surfacePoints, surfaceTriangles, attempts[a].parameters
+                    );
+                },
+                attempts[a].parameters.what
+            );
             result.backend = attempts[a].backend;
             result.attempts = int(a) + 1;
+            result.failures = failures;
             return result;
         }
         catch (const FatalError& e)
         {
-            failures
+            failures += msg()
                 << "\n  attempt " << a + 1 << " (" << attempts[a].backend
                 << (attempts[a].change.empty() ? "" : "; " + attempts[a].change)
                 << "): " << e.message();
@@ -130,7 +142,7 @@ pmsh::partitionVolumeResult pmsh::meshPartitionVolume
     throw FatalError
     (
         msg() << "Volume meshing of partition " << rank << " failed in all "
-            << attempts.size() << " attempts:" << std::string(failures) << "\n"
+            << attempts.size() << " attempts:" << failures << "\n"
             << "Its surface is written to " << failedSurfaceFile << " for diagnosis.\n"
             << "Try a smaller maxCellSize (a finer coarse mesh) or another"
             << " volumeMesher in system/pmshDict.",

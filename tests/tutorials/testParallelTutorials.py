@@ -151,6 +151,16 @@ class parallelRun(ParallelCaseTest):
         self.assertEqual(snapshot(c.dir), before, "previous output changed")
         self.assertEqual([f for f in os.listdir(c.dir) if f.startswith(".")], [])
 
+    def test_aCrashingVolumeMesherFallsBackAndTheMeshIsOK(self):
+        """Gmsh 4.8's HXT segfaults (hxtRefineTetrahedra) on the partition
+        surfaces of this coarse sphere: each attempt runs in a child
+        process, so the crash is a failed attempt and Netgen takes over."""
+        c = self.case("sphere", maxCellSize=0.5, refinementLevels=2, volumeMesher="hxt")
+        _, log = c.run("pmshFoam", np=2)
+        self.assertIn("crashed", log)
+        self.assertRegex(log, r"meshed by netgen at attempt")
+        self.assertRegex(c.check_mesh(np=2), r"Coupled point location match.*OK")
+
     def test_parallelOnOneRankIsAClearError(self):
         c = self.case("sphere")
         code, log = c.run("pmshFoam", "-parallel", check=False)
