@@ -1,12 +1,15 @@
 #include "clock.H"
 
+#include <algorithm>
 #include <fstream>
+#include <sys/resource.h>
 #include <string>
 #include <unistd.h>
 
 long pmsh::peakMemoryBytes()
 {
     // /proc/self/status reports the high-water mark as "VmHWM:  1234 kB"
+    long self = 0;
     std::ifstream is("/proc/self/status");
     for (std::string key; is >> key; )
     {
@@ -14,11 +17,18 @@ long pmsh::peakMemoryBytes()
         {
             long kB = 0;
             is >> kB;
-            return kB*1024;
+            self = kB*1024;
+            break;
         }
         std::getline(is, key);
     }
-    return 0;
+
+    // Volume meshing runs in child processes (childProcess.H): their peak
+    // is this rank's peak too
+    struct rusage children;
+    const long child = ::getrusage(RUSAGE_CHILDREN, &children) == 0
+        ? children.ru_maxrss*1024L : 0;     // ru_maxrss is in kB on Linux
+    return std::max(self, child);
 }
 
 
