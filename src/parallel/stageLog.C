@@ -1,12 +1,22 @@
 #include "stageLog.H"
 #include "Info.H"
 
+#include <algorithm>
 #include <iomanip>
+#include <numeric>
 #include <ostream>
+
+pmsh::minAvgMax pmsh::minAvgMaxOf(const std::vector<double>& perRank)
+{
+    const auto [low, high] = std::minmax_element(perRank.begin(), perRank.end());
+    const double sum = std::accumulate(perRank.begin(), perRank.end(), 0.0);
+    return {*low, sum/perRank.size(), *high};
+}
+
 
 pmsh::minAvgMax pmsh::reduceMinAvgMax(const Communicator& comm, double x)
 {
-    return {comm.min(x), comm.sum(x)/comm.size(), comm.max(x)};
+    return minAvgMaxOf(comm.allGather(x));
 }
 
 
@@ -41,7 +51,7 @@ double pmsh::stageLog::time(const std::string& key) const
 void pmsh::stageLog::end()
 {
     const std::vector<double> perRank = comm_.allGather(timer_.elapsed());
-    const minAvgMax t = reduceMinAvgMax(comm_, timer_.elapsed());
+    const minAvgMax t = minAvgMaxOf(perRank);
     Info() << std::fixed << std::setprecision(2);
     if (comm_.parallel())
     {

@@ -65,10 +65,13 @@ std::vector<pmsh::polyPatchInfo> pmsh::physicalPatches
 }
 
 
-std::vector<pmsh::patchNameType> pmsh::patchNamesAndTypes(const PolyMesh& mesh)
+std::vector<pmsh::patchNameType> pmsh::patchNamesAndTypes
+(
+    const std::vector<polyPatchInfo>& polyPatches
+)
 {
     std::vector<patchNameType> patches;
-    for (const polyPatchInfo& p : mesh.patches)
+    for (const polyPatchInfo& p : polyPatches)
     {
         patches.emplace_back(p.name, p.type);
     }
@@ -82,11 +85,7 @@ void pmsh::checkFieldTemplates
     const std::vector<polyPatchInfo>& patches
 )
 {
-    std::vector<patchNameType> physical;
-    for (const polyPatchInfo& p : patches)
-    {
-        physical.emplace_back(p.name, p.type);
-    }
+    const std::vector<patchNameType> physical = patchNamesAndTypes(patches);
     for (const fieldTemplate& field : fields)
     {
         checkPatchCoverage(field, physical);
@@ -250,7 +249,9 @@ void pmsh::reportSummary
     const double total = stages.total();
     const std::vector<double> memory = comm.allGather(double(peakMemoryBytes()));
     const std::vector<double> cellsPerRank = comm.allGather(double(localFineCells));
-    const minAvgMax memoryMiB = reduceMinAvgMax(comm, peakMemoryBytes()/1048576.0);
+    const minAvgMax memoryBytes = minAvgMaxOf(memory);
+    const minAvgMax memoryMiB
+        {memoryBytes.min/1048576.0, memoryBytes.avg/1048576.0, memoryBytes.max/1048576.0};
 
     // The paper's split: the coarse mesh, then everything up to the fine
     // mesh (writing excluded)
