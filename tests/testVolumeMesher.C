@@ -5,6 +5,8 @@
 #include "VolumeMesher.H"
 #include "Geometry.H"
 #include "netgenInterface.H"
+#include "partitionCoarseMesh.H"
+#include "surfaceRefinement.H"
 #include "testUtilities.H"
 
 #include <gtest/gtest.h>
@@ -221,6 +223,39 @@ TEST(netgenVolumeMesher, badSurfaces)
 
     // After all these failures Netgen still works
     EXPECT_NO_THROW(mesher->mesh(good.points, good.triangles, p));
+}
+
+
+TEST(hxtVolumeMesher, partitionSurfacesWithEdgesLongerThanTheFineSize)
+{
+    // Partition interfaces are refined coarse interior faces, whose edges
+    // exceed maxCellSize: at r = 2 they are longer than the fine size.
+    // Gmsh 4.8.4 crashed on every such surface of this sphere when the fine
+    // size was its Mesh.MeshSizeMax (hxtVolumeMesher.C)
+    const double maxCellSize = 0.3;
+    const int levels = 2;
+    auto g = Geometry::New(dataDir + "sphere.geo");
+    const CoarseMesh coarse = g->coarseMesh({maxCellSize, 0.3});
+    const std::vector<label> cellPart = partitionCells(coarse, 2);
+    volumeMeshParameters p;
+    p.maxCellSize = maxCellSize/(1 << levels);
+    auto mesher = VolumeMesher::New("hxt");
+    for (label part = 0; part < 2; ++part)
+    {
+        const FineSurface s = refinePartSurface(coarse, cellPart, part, g.get(), levels);
+        double longest = 0;
+        for (const triFace& t : s.triangles)
+        {
+            for (int k = 0; k < 3; ++k)
+            {
+                longest = std::max(longest, std::sqrt(magSqr(s.points[t[(k + 1)%3]] - s.points[t[k]])));
+            }
+        }
+        ASSERT_GT(longest, 2*p.maxCellSize) << "partition " << part;
+
+        const TetMesh m = mesher->mesh(s.points, s.triangles, p);
+        EXPECT_NO_THROW(verifyVolumeMesh(s.points, s.triangles, m, "test"));
+    }
 }
 
 

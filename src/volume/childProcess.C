@@ -38,38 +38,39 @@ bool writeArray(int fd, const std::vector<T>& v)
     return writeAll(fd, &n, sizeof(n)) && writeAll(fd, v.data(), n*sizeof(T));
 }
 
-// Everything the child wrote, until it closed the pipe
-std::vector<char> readAll(int fd)
+bool readAll(int fd, void* data, std::size_t n)
 {
-    std::vector<char> bytes;
-    char buffer[1 << 16];
-    for (;;)
+    char* p = static_cast<char*>(data);
+    while (n > 0)
     {
-        const ssize_t r = ::read(fd, buffer, sizeof(buffer));
+        const ssize_t r = ::read(fd, p, n);
         if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) break;
-        bytes.insert(bytes.end(), buffer, buffer + r);
+        if (r <= 0) return false;
+        p += r;
+        n -= std::size_t(r);
     }
-    return bytes;
+    return true;
 }
 
+// Straight into the array: no second copy of a mesh of millions of cells
 template<class T>
-bool readArray(const std::vector<char>& bytes, std::size_t& pos, std::vector<T>& v)
+bool readArray(int fd, std::vector<T>& v)
 {
     std::uint64_t n = 0;
-    if (pos + sizeof(n) > bytes.size()) return false;
-    std::memcpy(&n, bytes.data() + pos, sizeof(n));
-    pos += sizeof(n);
-    if (pos + n*sizeof(T) > bytes.size()) return false;
+    if (!readAll(fd, &n, sizeof(n))) return false;
     v.resize(n);
-    std::memcpy(v.data(), bytes.data() + pos, n*sizeof(T));
-    pos += n*sizeof(T);
-    return true;
+    return readAll(fd, v.data(), n*sizeof(T));
 }
 
 // Runs in the child: never returns
 [[noreturn]] void childMain(int fd, const std::function<TetMesh()>& work)
 {
+    // Open MPI's handlers would print the child's backtrace into the log;
+    // the parent reports a crash once, with the signal
+    for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT})
+    {
+        std::signal(sig, SIG_DFL);
+    }
     bool ok = false;
     try
     {
@@ -118,7 +119,17 @@ pmsh::TetMesh pmsh::meshInChildProcess
     }
 
     ::close(fds[1]);
-    const std::vector<char> bytes = readAll(fds[0]);   // before waiting: no pipe deadlock
+    // Read before waiting: a child blocked on a full pipe would never end
+    char reply = -1;
+    std::vector<char> errorText;
+    TetMesh result;
+    const bool complete =
+        readAll(fds[0], &reply, 1)
+     && (
+            reply == errorFollows
+          ? readArray(fds[0], errorText)
+          : readArray(fds[0], result.points) && readArray(fds[0], result.tets)
+        );
     ::close(fds[0]);
     int status = 0;
     while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {}
@@ -133,20 +144,11 @@ pmsh::TetMesh pmsh::meshInChildProcess
             function
         );
     }
-    std::size_t pos = 1;
-    if (!bytes.empty() && bytes[0] == errorFollows)
+    if (complete && reply == errorFollows)
     {
-        std::vector<char> text;
-        readArray(bytes, pos, text);
-        throw FatalError(std::string(text.begin(), text.end()), function);
+        throw FatalError(std::string(errorText.begin(), errorText.end()), function);
     }
-    TetMesh result;
-    if
-    (
-        bytes.empty() || bytes[0] != resultFollows
-     || !readArray(bytes, pos, result.points) || !readArray(bytes, pos, result.tets)
-     || !WIFEXITED(status) || WEXITSTATUS(status) != 0
-    )
+    if (!complete || reply != resultFollows || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
     {
         throw FatalError
         (

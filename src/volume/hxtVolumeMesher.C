@@ -10,8 +10,10 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iomanip>
 #include <mutex>
 #include <numeric>
+#include <sstream>
 #include <string>
 
 namespace
@@ -23,6 +25,9 @@ using namespace pmsh;
 // and serialise all use (pmshFoam meshes one partition per rank at a time;
 // the lock documents the constraint for anyone calling from threads).
 std::mutex gmshMutex;
+
+// HXT's target size relative to Netgen's maxh for similar cell counts
+constexpr double hxtSizeFactor = 1.2;
 
 void initialiseGmsh()
 {
@@ -116,13 +121,21 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::mesh
         // verifyVolumeMesh catches it and meshPartitionVolume retries with
         // one thread
         gmsh::option::setNumber("General.NumThreads", parameters.threads);
-        gmsh::option::setNumber("Mesh.MeshSizeMax", parameters.maxCellSize);
-        // Interior size grows from the surface edge lengths, as Netgen's.
-        // HXT fills the same surface with ~1.5x Netgen's cell count (whose
-        // optimiser removes cells); a size factor of 1.2 brings that to
-        // ~1.3x (sphere, r = 2), larger factors change nothing more.
+        // Interior size grows from the surface edge lengths, as Netgen's,
+        // capped at the fine size by a constant background field.
+        // Quirk: the same cap as Mesh.MeshSizeMax makes Gmsh 4.8.4 crash
+        // (SIGSEGV in hxtRefineTetrahedra) whenever it lies below the longer
+        // surface edges, which partition interfaces always have; the field
+        // gives the same sizes without the crash.
+        // HXT fills a surface with ~1.5x Netgen's cell count at the same
+        // size (Netgen's optimiser removes cells); a cap of 1.2x the fine
+        // size brings that to ~1.3x (serial) and ~1.0x (2 ranks), sphere r = 2.
         gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
-        gmsh::option::setNumber("Mesh.MeshSizeFactor", 1.2);
+        const int sizeField = gmsh::model::mesh::field::add("MathEval");
+        std::ostringstream cap;
+        cap << std::setprecision(17) << hxtSizeFactor*parameters.maxCellSize;
+        gmsh::model::mesh::field::setString(sizeField, "F", cap.str());
+        gmsh::model::mesh::field::setAsBackgroundMesh(sizeField);
         gmsh::option::setNumber("Mesh.Optimize", parameters.optimisationSteps > 0);
         gmsh::option::setNumber("Mesh.OptimizeThreshold", 0.3);
 

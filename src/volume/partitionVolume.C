@@ -3,29 +3,46 @@
 #include "error.H"
 
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 
 namespace
 {
 
 using namespace pmsh;
 
-// PMSH_TEST_FAIL_VOLUME_RANK = "<rank>" (every backend) or
-// "<rank>:<backend>" (that backend only)
-bool injectedFailure(int rank, const std::string& backend)
+// Test-only fault injection: PMSH_TEST_FAIL_VOLUME_RANK =
+// "<rank>[:<backend>][:crash]" makes that rank's attempts (with that backend
+// only, if named) fail, or with ":crash" die of SIGSEGV inside the mesher's
+// child process, as a crashing Netgen or Gmsh would.
+enum class injectedFault { none, failure, crash };
+
+injectedFault injectedFaultFor(int rank, const std::string& backend)
 {
     const char* value = std::getenv("PMSH_TEST_FAIL_VOLUME_RANK");
     if (!value)
     {
-        return false;
+        return injectedFault::none;
     }
-    const std::string spec(value);
-    const auto colon = spec.find(':');
-    return std::atoi(spec.c_str()) == rank
-        && (colon == std::string::npos || spec.substr(colon + 1) == backend);
+    std::vector<std::string> fields;
+    std::istringstream spec(value);
+    for (std::string field; std::getline(spec, field, ':');)
+    {
+        fields.push_back(field);
+    }
+    const bool crash = !fields.empty() && fields.back() == "crash";
+    if (crash)
+    {
+        fields.pop_back();
+    }
+    const bool hit =
+        !fields.empty() && std::atoi(fields[0].c_str()) == rank
+     && (fields.size() < 2 || fields[1] == backend);
+    return !hit ? injectedFault::none : crash ? injectedFault::crash : injectedFault::failure;
 }
 
 struct attempt
@@ -107,7 +124,8 @@ pmsh::partitionVolumeResult pmsh::meshPartitionVolume
     {
         try
         {
-            if (injectedFailure(rank, attempts[a].backend))
+            const injectedFault fault = injectedFaultFor(rank, attempts[a].backend);
+            if (fault == injectedFault::failure)
             {
                 throw FatalError("failure injected by PMSH_TEST_FAIL_VOLUME_RANK");
             }
@@ -117,6 +135,10 @@ pmsh::partitionVolumeResult pmsh::meshPartitionVolume
             (
                 [&]
                 {
+                    if (fault == injectedFault::crash)
+                    {
+                        std::raise(SIGSEGV);
+                    }
                     return mesher->mesh
                     (
                         surfacePoints, surfaceTriangles, attempts[a].parameters
