@@ -204,8 +204,7 @@ int main(int argc, char* argv[])
 
         reportSummary
         (
-            comm, args.caseDir(), settings, coarse,
-            label(tets.tets.size()), nFineCells, stages
+            comm, args.caseDir(), settings, coarse, volume, nFineCells, stages
         );
     }
     catch (const collectiveFailure& e)

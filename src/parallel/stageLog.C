@@ -52,17 +52,21 @@ void pmsh::stageLog::end()
 {
     const std::vector<double> perRank = comm_.allGather(timer_.elapsed());
     const minAvgMax t = minAvgMaxOf(perRank);
+    const double memory = minAvgMaxOf(comm_.allGather(double(peakMemoryBytes()))).max;
     Info() << std::fixed << std::setprecision(2);
     if (comm_.parallel())
     {
         Info()
             << "    time (s) min/avg/max: " << t.min << " / " << t.avg << " / " << t.max
-            << '\n';
+            << std::setprecision(1)
+            << ", peak memory (MiB) max: " << memory/1048576.0 << '\n';
     }
     else
     {
-        Info() << "    time: " << t.max << " s\n";
+        Info()
+            << "    time: " << t.max << " s" << std::setprecision(1)
+            << ", peak memory: " << memory/1048576.0 << " MiB\n";
     }
     Info() << std::defaultfloat << std::setprecision(6) << '\n';
-    times_.push_back({key_, title_, perRank, t.max});
+    times_.push_back({key_, title_, perRank, t.max, memory});
 }

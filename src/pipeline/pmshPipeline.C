@@ -241,14 +241,21 @@ void pmsh::reportSummary
     const std::string& caseDir,
     const meshSettings& settings,
     const CoarseMesh& coarse,
-    label localFineCells,
+    const partitionVolumeResult& volume,
     globalLabel nFineCells,
     const stageLog& stages
 )
 {
     const double total = stages.total();
     const std::vector<double> memory = comm.allGather(double(peakMemoryBytes()));
-    const std::vector<double> cellsPerRank = comm.allGather(double(localFineCells));
+    const std::vector<double> cellsPerRank =
+        comm.allGather(double(volume.mesh.tets.size()));
+    const std::vector<double> attemptsPerRank = comm.allGather(double(volume.attempts));
+    const std::vector<std::string> backends = VolumeMesher::names();
+    const std::vector<double> backendPerRank = comm.allGather
+    (
+        double(std::find(backends.begin(), backends.end(), volume.backend) - backends.begin())
+    );
     const minAvgMax memoryBytes = minAvgMaxOf(memory);
     const minAvgMax memoryMiB
         {memoryBytes.min/1048576.0, memoryBytes.avg/1048576.0, memoryBytes.max/1048576.0};
@@ -306,12 +313,20 @@ void pmsh::reportSummary
         << "  \"coarseCells\": " << coarse.nCells() << ",\n"
         << "  \"fineCells\": " << nFineCells << ",\n"
         << "  \"fineCellsPerRank\": " << jsonArray(cellsPerRank) << ",\n"
+        << "  \"volumeMesherPerRank\": [";
+    for (std::size_t i = 0; i < backendPerRank.size(); ++i)
+    {
+        os  << (i ? ", " : "") << jsonString(backends.at(std::size_t(backendPerRank[i])));
+    }
+    os  << "],\n"
+        << "  \"volumeAttemptsPerRank\": " << jsonArray(attemptsPerRank) << ",\n"
         << "  \"stages\": {\n";
     const auto& times = stages.times();
     for (std::size_t i = 0; i < times.size(); ++i)
     {
         os  << "    " << jsonString(times[i].key) << ": {\"seconds\": " << times[i].max
-            << ", \"secondsPerRank\": " << jsonArray(times[i].perRank) << "}"
+            << ", \"secondsPerRank\": " << jsonArray(times[i].perRank)
+            << ", \"peakMemoryBytes\": " << times[i].peakMemoryBytes << "}"
             << (i + 1 < times.size() ? ",\n" : "\n");
     }
     os  << "  },\n"

@@ -8,6 +8,7 @@ Run one test:  python3 testParallelTutorials.py sphere.test_np2
 """
 
 import filecmp
+import json
 import os
 import re
 import sys
@@ -163,6 +164,11 @@ class parallelRun(ParallelCaseTest):
         self.assertNotIn("partition 0 meshed by", log)
         self.assertNotIn("Process received signal", log)
         self.assertRegex(c.check_mesh(np=2), r"Coupled point location match.*OK")
+        with open(os.path.join(c.dir, "postProcessing/pmshFoam/summary.json")) as f:
+            summary = json.load(f)
+        self.assertEqual(summary["volumeMesherPerRank"], ["hxt", "netgen"])
+        self.assertEqual(summary["volumeAttemptsPerRank"][0], 1)
+        self.assertGreater(summary["volumeAttemptsPerRank"][1], 1)
 
     def test_parallelOnOneRankIsAClearError(self):
         c = self.case("sphere")

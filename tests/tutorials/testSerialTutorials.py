@@ -5,6 +5,7 @@ boundary lies on the geometry. (Bad input: testBadInput.py.)
 Run one test:  python3 testSerialTutorials.py sphere.test_meshOkAtEachLevelAscii
 """
 
+import json
 import math
 import os
 import subprocess
@@ -78,6 +79,24 @@ class sphere(CaseTest):
             ratio = meshes[r][1] / meshes[r - 1][1]
             self.assertTrue(8 * 0.7 <= ratio <= 8 * 1.3,
                             "cells grew %.2fx from level %d to %d" % (ratio, r - 1, r))
+
+    def test_summaryJsonAgreesWithCheckMesh(self):
+        """postProcessing/pmshFoam/summary.json, what the benchmark reads"""
+        c = self.case("sphere", refinementLevels=1)
+        c.run("pmshFoam")
+        cells = cells_in_checkmesh_log(c.check_mesh())
+        with open(os.path.join(c.dir, "postProcessing/pmshFoam/summary.json")) as f:
+            s = json.load(f)
+        self.assertEqual(s["fineCells"], cells)
+        self.assertEqual(s["fineCellsPerRank"], [cells])
+        self.assertEqual(s["volumeMesherPerRank"], ["netgen"])
+        self.assertEqual(s["volumeAttemptsPerRank"], [1])
+        stages = ["coarse", "partition", "surface", "volume", "numbering", "write"]
+        self.assertEqual(list(s["stages"]), stages)
+        memory = [s["stages"][k]["peakMemoryBytes"] for k in stages]
+        self.assertEqual(memory, sorted(memory), "a peak so far cannot fall")
+        self.assertEqual(memory[-1], max(s["peakMemoryPerRankBytes"]))
+        self.assertAlmostEqual(s["fineTime"], sum(s["stages"][k]["seconds"] for k in stages[1:5]))
 
     def test_tutorialAllrunEndsWithMeshOK(self):
         c = self.case("sphere")
