@@ -26,9 +26,6 @@ using namespace pmsh;
 // the lock documents the constraint for anyone calling from threads).
 std::mutex gmshMutex;
 
-// HXT's target size relative to Netgen's maxh for similar cell counts
-constexpr double hxtSizeFactor = 1.2;
-
 void initialiseGmsh()
 {
     static std::once_flag once;
@@ -122,18 +119,21 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::mesh
         // one thread
         gmsh::option::setNumber("General.NumThreads", parameters.threads);
         // Interior size grows from the surface edge lengths, as Netgen's,
-        // capped at the fine size by a constant background field.
+        // capped at the fine size (Netgen's maxh) by a constant background
+        // field. Partition interfaces are refined coarse interior faces,
+        // whose edges are up to 3x the fine size: without the cap, cells
+        // near them would be coarser than in a serial run of the same case.
+        // (The cap at 1.2x the fine size, which matches Netgen's serial cell
+        // count better, gave 25-35% fewer cells on 2-4 ranks than on one;
+        // at 1x the count varies by under 10% with the number of ranks.)
         // Quirk: the same cap as Mesh.MeshSizeMax makes Gmsh 4.8.4 crash
         // (SIGSEGV in hxtRefineTetrahedra) whenever it lies below the longer
         // surface edges, which partition interfaces always have; the field
         // gives the same sizes without the crash.
-        // HXT fills a surface with ~1.5x Netgen's cell count at the same
-        // size (Netgen's optimiser removes cells); a cap of 1.2x the fine
-        // size brings that to ~1.3x (serial) and ~1.0x (2 ranks), sphere r = 2.
         gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
         const int sizeField = gmsh::model::mesh::field::add("MathEval");
         std::ostringstream cap;
-        cap << std::setprecision(17) << hxtSizeFactor*parameters.maxCellSize;
+        cap << std::setprecision(17) << parameters.maxCellSize;
         gmsh::model::mesh::field::setString(sizeField, "F", cap.str());
         gmsh::model::mesh::field::setAsBackgroundMesh(sizeField);
         gmsh::option::setNumber("Mesh.Optimize", parameters.optimisationSteps > 0);

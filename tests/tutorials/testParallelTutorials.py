@@ -125,14 +125,22 @@ class parallelRun(ParallelCaseTest):
                 self.assertEqual(mismatch + errors, [], d.left)
                 stack.extend(d.subdirs.values())
 
-    def test_totalCellsWithinFifteenPercentOfSerial(self):
-        serial = self.case("sphere", refinementLevels=2)
+    def total_cells_within_fifteen_percent_of_serial(self, backend):
+        serial = self.case("sphere", refinementLevels=2, volumeMesher=backend)
         serial.run("pmshFoam")
         nSerial = cells_in_checkmesh_log(serial.check_mesh())
         for np in (2, 4):
-            _, n = self.mesh_parallel("sphere", np, 2)
+            _, n = self.mesh_parallel("sphere", np, 2, volumeMesher=backend)
             self.assertLess(abs(n - nSerial) / nSerial, 0.15,
-                            "%d cells on %d ranks vs %d serial" % (n, np, nSerial))
+                            "%s: %d cells on %d ranks vs %d serial" % (backend, n, np, nSerial))
+
+    def test_totalCellsWithinFifteenPercentOfSerial(self):
+        self.total_cells_within_fifteen_percent_of_serial("netgen")
+
+    def test_hxtTotalCellsWithinFifteenPercentOfSerial(self):
+        """The interface's long edges must not coarsen the cells near it
+        (hxtVolumeMesher.C: the interior size is capped at the fine size)"""
+        self.total_cells_within_fifteen_percent_of_serial("hxt")
 
     def test_oneRankFailingStopsAllRanksAndKeepsThePreviousOutput(self):
         np = 3
