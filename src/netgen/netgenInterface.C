@@ -34,9 +34,10 @@
     and skipped: turned into an error;
   - when the advancing front fails after the Delaunay fill ("Call remove
     problem"), MeshVolume leaves nearly every tet flagged fixed, and the
-    volume optimisation then removes no cells (1.6-1.8x as many: seen on 2
-    of 9 partition surfaces at r = 3, which ones depending on the point
-    order): the flags are cleared before it.
+    volume optimisation then removes no cells (1.2-1.8x as many; which
+    surfaces take that path depends on the point order: 1 of 7 partition
+    surfaces at r = 3 and 3 of 96 at r = 2 in the tutorials): the flags are
+    cleared before it.
 \*---------------------------------------------------------------------------*/
 
 #include "netgenInterface.H"
