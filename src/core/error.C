@@ -8,6 +8,15 @@ pmsh::FatalError::FatalError(const std::string& message, const std::string& wher
 {}
 
 
+std::string pmsh::str(const point& p, int precision)
+{
+    std::ostringstream os;
+    os.precision(precision);
+    os  << '(' << p[0] << ' ' << p[1] << ' ' << p[2] << ')';
+    return os.str();
+}
+
+
 std::string pmsh::FatalError::report() const
 {
     std::ostringstream os;

@@ -60,3 +60,33 @@ pmsh::surfaceEdgeDefects pmsh::findSurfaceEdgeDefects
     }
     return d;
 }
+
+
+pmsh::surfacePointDefects pmsh::findSurfacePointDefects
+(
+    label nPoints,
+    const std::vector<triFace>& triangles
+)
+{
+    surfacePointDefects defects;
+    std::vector<bool> used(nPoints, false);
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+    {
+        for (label p : triangles[t])
+        {
+            if (p < 0 || p >= nPoints)
+            {
+                defects.badTriangle = label(t);
+                defects.badPoint = p;
+                return defects;
+            }
+            used[p] = true;
+        }
+    }
+    const auto unused = std::find(used.begin(), used.end(), false);
+    if (unused != used.end())
+    {
+        defects.firstUnused = label(unused - used.begin());
+    }
+    return defects;
+}

@@ -22,12 +22,10 @@ namespace pmsh
 namespace
 {
 
-std::string str(const point& p)
+// STL coordinates in messages: enough digits to find the facet in the file
+std::string stlPoint(const point& p)
 {
-    std::ostringstream os;
-    os.precision(10);
-    os  << '(' << p[0] << ' ' << p[1] << ' ' << p[2] << ')';
-    return os.str();
+    return str(p, 10);
 }
 
 
@@ -384,7 +382,7 @@ bool looksAscii(const std::string& buf)
 
 std::string edgeString(const stlSurface& s, label a, label b)
 {
-    return str(s.points[a]) + "-" + str(s.points[b]);
+    return stlPoint(s.points[a]) + "-" + stlPoint(s.points[b]);
 }
 
 } // End anonymous namespace
@@ -586,8 +584,8 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
                     << "STL file \"" << fileName << "\" has " << nBad
                     << " degenerate (zero-area) triangle(s), e.g. triangle "
                     << first << " of solid " << s.solidNames[s.solid[first]]
-                    << ": " << str(s.points[f[0]]) << ' ' << str(s.points[f[1]])
-                    << ' ' << str(s.points[f[2]]) << ".\nRemove them (or"
+                    << ": " << stlPoint(s.points[f[0]]) << ' ' << stlPoint(s.points[f[1]])
+                    << ' ' << stlPoint(s.points[f[2]]) << ".\nRemove them (or"
                     << " repair the surface) before meshing",
                 function
             );

@@ -42,6 +42,7 @@
 
 #include "netgenInterface.H"
 #include "error.H"
+#include "surfaceTopology.H"
 
 #include <algorithm>
 #include <cmath>
@@ -197,15 +198,6 @@ std::string oneLine(const std::string& s)
         }
     }
     return r;
-}
-
-
-//- "(x y z)" for messages.
-std::string str(const pmsh::point& p)
-{
-    std::ostringstream os;
-    os  << '(' << p[0] << ' ' << p[1] << ' ' << p[2] << ')';
-    return os.str();
 }
 
 
@@ -1138,39 +1130,28 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
     // MeshVolume starts with Mesh::Compress(), which deletes points that no
     // element uses and renumbers the rest: the surface points would no
     // longer be 0..n-1. Refuse such input instead.
+    const surfacePointDefects use = findSurfacePointDefects(nPoints, triangles);
+    if (use.badTriangle >= 0)
     {
-        std::vector<bool> used(points.size(), false);
-        for (std::size_t i = 0; i < triangles.size(); ++i)
-        {
-            for (label p : triangles[i])
-            {
-                if (p < 0 || p >= nPoints)
-                {
-                    throw FatalError
-                    (
-                        msg()
-                            << "Triangle " << i << " of " << what
-                            << " refers to point " << p << ": valid points"
-                            << " are 0.." << nPoints - 1,
-                        function
-                    );
-                }
-                used[p] = true;
-            }
-        }
-        const auto unused = std::find(used.begin(), used.end(), false);
-        if (unused != used.end())
-        {
-            const std::size_t i = unused - used.begin();
-            throw FatalError
-            (
-                msg()
-                    << "Point " << i << ' ' << str(points[i]) << " of " << what
-                    << " is not used by any triangle: Netgen would renumber"
-                    << " the points. Pass only the points of the surface",
-                function
-            );
-        }
+        throw FatalError
+        (
+            msg()
+                << "Triangle " << use.badTriangle << " of " << what
+                << " refers to point " << use.badPoint << ": valid points"
+                << " are 0.." << nPoints - 1,
+            function
+        );
+    }
+    if (use.firstUnused >= 0)
+    {
+        throw FatalError
+        (
+            msg()
+                << "Point " << use.firstUnused << ' ' << str(points[use.firstUnused])
+                << " of " << what << " is not used by any triangle: Netgen would"
+                << " renumber the points. Pass only the points of the surface",
+            function
+        );
     }
 
     // An element larger than the domain is meaningless, and Netgen's local

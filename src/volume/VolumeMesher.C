@@ -21,14 +21,6 @@ namespace pmsh
 namespace
 {
 
-std::string str(const point& p)
-{
-    std::ostringstream os;
-    os  << '(' << p[0] << ' ' << p[1] << ' ' << p[2] << ')';
-    return os.str();
-}
-
-
 //- A triangle's point set (sorted), as a hash key.
 struct triKey
 {
@@ -131,24 +123,20 @@ void pmsh::checkClosedSurface
         );
     }
 
-    std::vector<bool> used(points.size(), false);
+    const surfacePointDefects use = findSurfacePointDefects(np, triangles);
+    if (use.badTriangle >= 0)
+    {
+        throw FatalError
+        (
+            msg()
+                << "Triangle " << use.badTriangle << " of " << what << " refers to"
+                << " point " << use.badPoint << ": valid points are 0.." << np - 1,
+            function
+        );
+    }
     for (std::size_t t = 0; t < triangles.size(); ++t)
     {
         const triFace& f = triangles[t];
-        for (label p : f)
-        {
-            if (p < 0 || p >= np)
-            {
-                throw FatalError
-                (
-                    msg()
-                        << "Triangle " << t << " of " << what << " refers to"
-                        << " point " << p << ": valid points are 0.." << np - 1,
-                    function
-                );
-            }
-            used[p] = true;
-        }
         if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2])
         {
             throw FatalError
@@ -160,15 +148,14 @@ void pmsh::checkClosedSurface
             );
         }
     }
-    const auto unused = std::find(used.begin(), used.end(), false);
-    if (unused != used.end())
+    if (use.firstUnused >= 0)
     {
-        const std::size_t i = unused - used.begin();
         throw FatalError
         (
             msg()
-                << "Point " << i << ' ' << str(points[i]) << " of " << what
-                << " is used by no triangle: Netgen would drop and renumber it",
+                << "Point " << use.firstUnused << ' ' << str(points[use.firstUnused])
+                << " of " << what << " is used by no triangle: Netgen would drop"
+                << " and renumber it",
             function
         );
     }
