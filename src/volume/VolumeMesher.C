@@ -100,6 +100,26 @@ std::unique_ptr<pmsh::VolumeMesher> pmsh::VolumeMesher::New(const std::string& n
 }
 
 
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+pmsh::TetMesh pmsh::VolumeMesher::mesh
+(
+    const std::vector<point>& surfacePoints,
+    const std::vector<triFace>& surfaceTriangles,
+    const volumeMeshParameters& parameters
+) const
+{
+    checkClosedSurface(surfacePoints, surfaceTriangles, parameters.what);
+    TetMesh result = generate(surfacePoints, surfaceTriangles, parameters);
+    verifyVolumeMesh
+    (
+        surfacePoints, surfaceTriangles, result,
+        title() + "'s mesh of " + parameters.what
+    );
+    return result;
+}
+
+
 // * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * * //
 
 void pmsh::checkClosedSurface

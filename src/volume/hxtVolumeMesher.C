@@ -64,7 +64,7 @@ void initialiseGmsh()
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
-pmsh::TetMesh pmsh::hxtVolumeMesher::mesh
+pmsh::TetMesh pmsh::hxtVolumeMesher::generate
 (
     const std::vector<point>& surfacePoints,
     const std::vector<triFace>& surfaceTriangles,
@@ -72,8 +72,6 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::mesh
 ) const
 {
     const std::string& what = parameters.what;
-    checkClosedSurface(surfacePoints, surfaceTriangles, what);
-
     std::lock_guard<std::mutex> lock(gmshMutex);
     initialiseGmsh();
 
@@ -218,7 +216,6 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::mesh
         gmshFailed(error.what(), what);
     }
 
-    verifyVolumeMesh(surfacePoints, surfaceTriangles, result, "Gmsh HXT's mesh of " + what);
     return result;
 }
 
