@@ -620,32 +620,26 @@ def dpkg_version(package):
     return command_output(["dpkg-query", "-W", "-f", "${Version}", package]) or "?"
 
 
+def line_value(path, prefix):
+    """The rest of the first line of the text file `path` that starts with
+    `prefix`, or None (no such line, or no such file)"""
+    try:
+        with open(path) as f:
+            for line in f:
+                if line.startswith(prefix):
+                    return line[len(prefix):]
+    except OSError:
+        pass
+    return None
+
+
 def machine_description(args):
-    cpu = "?"
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    mem = "?"
-    try:
-        with open("/proc/meminfo") as f:
-            for line in f:
-                if line.startswith("MemTotal"):
-                    mem = "%.1f GiB" % (int(line.split()[1])/1048576.0)
-    except OSError:
-        pass
-    os_name = "?"
-    try:
-        with open("/etc/os-release") as f:
-            for line in f:
-                if line.startswith("PRETTY_NAME="):
-                    os_name = line.split("=", 1)[1].strip().strip('"')
-    except OSError:
-        pass
+    cpu = line_value("/proc/cpuinfo", "model name")         # "\t: Intel(R) ..."
+    cpu = cpu.split(":", 1)[1].strip() if cpu else "?"
+    mem = line_value("/proc/meminfo", "MemTotal:")          # "   24576000 kB"
+    mem = "%.1f GiB" % (int(mem.split()[0])/1048576.0) if mem else "?"
+    os_name = line_value("/etc/os-release", "PRETTY_NAME=")
+    os_name = os_name.strip().strip('"') if os_name else "?"
     commit = command_output(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"]) or "?"
     dirty = command_output(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no",
                             "--", "src", "pmshFoam.C", "createFields.H", "CMakeLists.txt"])
