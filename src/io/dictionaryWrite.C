@@ -81,42 +81,7 @@ void dictionary::writeFile(const std::string& file) const
     os  << foamBanner();
     write(os);
     os  << '\n' << foamEndLine() << '\n';
-    const std::string text = os.str();
-
-    const fs::path path(file);
-    std::error_code ec;
-    if (path.has_parent_path())
-    {
-        fs::create_directories(path.parent_path(), ec);
-    }
-    const std::string tmp =
-        file + ".pmshTmp" + std::to_string(static_cast<long>(::getpid()));
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        out.close();
-        if (!out)
-        {
-            fs::remove(tmp, ec);
-            throw FatalError
-            (
-                msg() << "Cannot write file \"" << file << "\""
-                    << " (check that the directory is writable and the disk"
-                    << " is not full)",
-                "pmsh::dictionary::writeFile"
-            );
-        }
-    }
-    fs::rename(tmp, file, ec);
-    if (ec)
-    {
-        fs::remove(tmp, ec);
-        throw FatalError
-        (
-            msg() << "Cannot write file \"" << file << "\": " << ec.message(),
-            "pmsh::dictionary::writeFile"
-        );
-    }
+    writeFileAtomically(file, os.str());
 }
 
 
@@ -142,6 +107,45 @@ std::string foamEndLine()
 {
     return
         "// ************************************************************************* //";
+}
+
+void writeFileAtomically(const std::string& file, const std::string& text)
+{
+    const char* function = "pmsh::writeFileAtomically";
+    const fs::path path(file);
+    std::error_code ec;
+    if (path.has_parent_path())
+    {
+        fs::create_directories(path.parent_path(), ec);
+    }
+    const std::string tmp =
+        file + ".pmshTmp" + std::to_string(static_cast<long>(::getpid()));
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        out.close();
+        if (!out)
+        {
+            fs::remove(tmp, ec);
+            throw FatalError
+            (
+                msg() << "Cannot write file \"" << file << "\""
+                    << " (check that the directory is writable and the disk"
+                    << " is not full)",
+                function
+            );
+        }
+    }
+    fs::rename(tmp, file, ec);
+    if (ec)
+    {
+        fs::remove(tmp, ec);
+        throw FatalError
+        (
+            msg() << "Cannot write file \"" << file << "\": " << ec.message(),
+            function
+        );
+    }
 }
 
 } // End namespace pmsh

@@ -7,8 +7,6 @@
 #include <fstream>
 #include <sstream>
 
-#include <unistd.h>
-
 namespace fs = std::filesystem;
 
 namespace pmsh
@@ -51,41 +49,6 @@ std::string readText(const std::string& file)
     std::ostringstream os;
     os << is.rdbuf();
     return os.str();
-}
-
-
-//- Write text to a temporary file and rename it into place.
-void writeText(const std::string& file, const std::string& text)
-{
-    std::error_code ec;
-    const fs::path path(file);
-    if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);
-    const std::string tmp =
-        file + ".pmshTmp" + std::to_string(static_cast<long>(::getpid()));
-    {
-        std::ofstream os(tmp, std::ios::binary);
-        os << text;
-        os.close();
-        if (!os)
-        {
-            fs::remove(tmp, ec);
-            throw FatalError
-            (
-                msg() << "Cannot write file \"" << file << "\"",
-                "pmsh::writeDecomposeParDict"
-            );
-        }
-    }
-    fs::rename(tmp, file, ec);
-    if (ec)
-    {
-        fs::remove(tmp, ec);
-        throw FatalError
-        (
-            msg() << "Cannot write file \"" << file << "\": " << ec.message(),
-            "pmsh::writeDecomposeParDict"
-        );
-    }
 }
 
 
@@ -681,7 +644,7 @@ void writeDecomposeParDict(const std::string& caseDir, int nProcs)
 
     if (ok)
     {
-        writeText(path, edited);
+        writeFileAtomically(path, edited);
     }
     else
     {
