@@ -8,122 +8,185 @@
 Application
     pmshFoam
 
+Group
+    grpMeshGenerationUtilities
+
 Description
     Parallel tetrahedral mesh generator following the PMSH method: a coarse
-    Netgen mesh of a CSG (.geo) or STL geometry, a METIS partition of it,
+    Netgen mesh of a CSG (.geo) or STL geometry, a partition of it by the
+    decomposition method of system/decomposeParDict (metis by default),
     r levels of refinement of each partition's surface with projection onto
-    the geometry, Netgen volume remeshing of each partition, and global
-    point numbering through integer barycentric ids (no floating-point
-    matching).
+    the geometry, volume remeshing of each partition (Netgen or HXT), and
+    global point numbering through integer barycentric ids (no
+    floating-point matching).
 
     Serial runs write constant/polyMesh. Parallel runs write
-    processorN/constant/polyMesh with the procAddressing files,
-    processorN/<startTime>/ fields from the case's templates and
-    system/decomposeParDict, so that a solver runs with -parallel at once,
-    without decomposePar.
+    processorN/constant/polyMesh (or processors<N>/ with the collated
+    fileHandler) with the procAddressing files, processorN/<startTime>/
+    fields from the case's templates and system/decomposeParDict, so that a
+    solver runs with -parallel at once, without decomposePar.
 
 Usage
-    pmshFoam [-case dir] [-dict file] [-overwrite]
-    mpirun -np N pmshFoam -parallel [-case dir] [-dict file] [-overwrite]
+    \b pmshFoam [OPTION]
+    \b mpirun -np N pmshFoam -parallel [OPTION]
+
+    Options:
+      - \par -dict \<file\>
+        Alternative mesh dictionary (default system/pmshDict)
+
+      - \par -overwrite
+        Replace an existing mesh (only once meshing succeeded on every rank)
+
+      - \par -decomposeParDict \<file\>
+        Alternative decomposition dictionary
 
     Reads system/pmshDict (geometry, maxCellSize, grading, refinementLevels,
-    volumeMesher, optimisationSteps, patches) and system/controlDict
-    (writeFormat, writePrecision, startTime).
+    volumeMesher, optimisationSteps, volumeMesherThreads, patches) and, as
+    every OpenFOAM utility, system/controlDict (writeFormat, writePrecision,
+    startTime) and the fileHandler settings.
 
 \*---------------------------------------------------------------------------*/
 
 #include "argList.H"
+#include "Time.H"
+#include "IOdictionary.H"
+#include "sigFpe.H"
+#include "fileOperation.H"
+
 #include "caseOutput.H"
-#include "clock.H"
 #include "coarseMesh.H"
 #include "Communicator.H"
-#include "error.H"
 #include "failTogether.H"
 #include "fieldTemplates.H"
+#include "foamMeshOutput.H"
 #include "Geometry.H"
 #include "globalNumbering.H"
 #include "Info.H"
 #include "memoryEstimate.H"
 #include "meshSettings.H"
 #include "partitionCoarseMesh.H"
-#include "polyMeshWriter.H"
+#include "partitionVolume.H"
 #include "pmshPipeline.H"
 #include "procAddressing.H"
 #include "stageLog.H"
 #include "surfaceRefinement.H"
 #include "tetsToPolyMesh.H"
-#include "partitionVolume.H"
 
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <optional>
 
-using namespace pmsh;
+using namespace Foam;
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
-int main(int argc, char* argv[])
+int main(int argc, char *argv[])
 {
-    std::unique_ptr<Communicator> commPtr
+    argList::addNote
     (
-        argList::parallelRequested(argc, argv)
-      ? new Communicator(argc, argv)
-      : new Communicator()
+        "Generate a tetrahedral mesh in parallel (PMSH method) from a Netgen"
+        " CSG (.geo) or STL geometry, straight into processor*/"
     );
-    const Communicator& comm = *commPtr;
-    setLogRank(comm.rank(), comm.parallel());
+    argList::noFunctionObjects();
+    // processor*/ are what pmshFoam writes: they need not exist yet
+    argList::noCheckProcessorDirectories();
+    #include "addDictOption.H"
+    #include "addOverwriteOption.H"
+    argList::addOption
+    (
+        "decomposeParDict",
+        "file",
+        "Use specified file for the decomposition dictionary"
+    );
 
+    // Volume meshing runs in forked children that make no MPI calls (see
+    // childProcess.H): Open MPI need not warn about the fork
+    ::setenv("OMPI_MCA_mpi_warn_on_fork", "0", 0);
+
+    #include "setRootCase.H"
+
+    // Netgen and HXT divide by zero and take square roots of negatives on
+    // purpose (and test the result): OpenFOAM's trapFpe would kill them
+    sigFpe::unset();
+
+    // Netgen's Mesh asks MPI for its rank, also in a serial run
+    if (!Pstream::parRun())
+    {
+        UPstream::initNull();
+    }
+
+    // v1912's collated fileHandler deadlocks (every rank waiting in its
+    // readDir) when it looks for the processors directory of a case that
+    // has none yet, as a case pmshFoam meshes: read the case uncollated,
+    // write through the fileHandler asked for
+    const word outputFileHandler = fileHandler().type();
+    {
+        autoPtr<fileOperation> reader(fileOperation::New("uncollated", false));
+        fileHandler(reader);
+    }
+
+    #include "createTime.H"
+
+    // Errors of every rank are agreed on before anyone stops (failTogether)
+    FatalError.throwExceptions();
+    FatalIOError.throwExceptions();
+
+    const pmsh::Communicator comm;
+    pmsh::setLogRank(comm.rank(), comm.parallel());
+
+    int exitCode = 0;
     try
     {
-        const argList args(argc, argv);
-        args.printBanner(comm.size());
-
         // Everything is read and validated before any meshing starts
-        meshSettings settings;
-        writeSettings output;
-        std::vector<fieldTemplate> fields;
-        std::unique_ptr<Geometry> geometry;
-        failTogether(comm, [&]
+        pmsh::meshSettings settings;
+        dictionary decomposition;
+        std::vector<pmsh::fieldTemplate> fieldTemplates;
+        std::unique_ptr<pmsh::Geometry> geometry;
+        pmsh::failTogether(comm, [&]
         {
-            requireMoreThanOneRank(comm);
-            settings = readMeshSettings(args.caseDir(), args.dictFile());
-            output = readWriteSettings(args.caseDir());
+            const word dictName("pmshDict");
+            #include "setSystemRunTimeDictionaryIO.H"
+            settings = pmsh::readMeshSettings(IOdictionary(dictIO), runTime.globalPath());
+            decomposition = pmsh::decompositionDict(args, comm.size());
             if (comm.parallel())
             {
-                fields = readFieldTemplates(args.caseDir() + "/" + output.startTime);
+                fieldTemplates = pmsh::readFieldTemplates(runTime);
             }
-            geometry = Geometry::New(settings.geometryFile);
+            geometry = pmsh::Geometry::New(settings.geometryFile);
         });
-        std::optional<caseOutput> target;
-        failTogether(comm, [&]
+        std::optional<pmsh::caseOutput> output;
+        pmsh::failTogether(comm, [&]
         {
-            target.emplace(comm, args.caseDir(), args.overwrite());
+            output.emplace(comm, runTime, args.found("overwrite"));
         });
 
-        stageLog stages(comm);
+        pmsh::stageLog stages(comm);
 
         stages.begin("coarse", "Stage 1: coarse mesh (Netgen) of " + settings.geometryFile);
-        const CoarseMesh coarse = generateCoarseMesh
+        const pmsh::CoarseMesh coarse = pmsh::generateCoarseMesh
         (
             comm, *geometry, {settings.maxCellSize, settings.grading}
         );
-        logCoarseMesh(coarse);
-        failTogether(comm, [&]
+        pmsh::logCoarseMesh(coarse);
+        const std::vector<pmsh::polyPatchInfo> patches =
+            pmsh::physicalPatches(coarse, settings);
+        pmsh::failTogether(comm, [&]
         {
             // Stop before the expensive stages if the fine mesh cannot fit
-            checkMemoryEstimate(comm, settings, coarse.nCells());
-        });
-        const std::vector<polyPatchInfo> patches = physicalPatches(coarse, settings);
-        failTogether(comm, [&]
-        {
+            pmsh::checkMemoryEstimate(comm, settings, coarse.nCells());
             // The patches are known now: every field must cover them all
-            checkFieldTemplates(fields, patches);
+            pmsh::checkPatchCoverage(fieldTemplates, patches);
         });
         stages.end();
 
         stages.begin("partition", "Stage 2: partition into " + std::to_string(comm.size()) + " parts");
-        const std::vector<label> cellPart = partitionCoarseMesh(comm, coarse);
-        logPartSizes(comm, cellPart);
+        std::vector<pmsh::label> cellPart;
+        pmsh::failTogether(comm, [&]
+        {
+            cellPart = pmsh::partitionCoarseMesh(comm, coarse, decomposition);
+        });
+        pmsh::logPartSizes(comm, cellPart);
         stages.end();
 
         stages.begin
@@ -132,100 +195,117 @@ int main(int argc, char* argv[])
             "Stage 3: surface refinement, "
           + std::to_string(settings.refinementLevels) + " levels, with projection"
         );
-        FineSurface surface;
-        failTogether(comm, [&]
+        pmsh::FineSurface surface;
+        pmsh::failTogether(comm, [&]
         {
-            surface = refinePartSurface
+            surface = pmsh::refinePartSurface
             (
                 coarse, cellPart, comm.rank(), geometry.get(), settings.refinementLevels
             );
         });
-        logSurfaceSizes(comm, surface);
+        pmsh::logSurfaceSizes(comm, surface);
         stages.end();
 
         stages.begin("volume", "Stage 4: volume meshing (" + settings.volumeMesher + ")");
-        partitionVolumeResult volume;
-        failTogether(comm, [&]
+        pmsh::partitionVolumeResult volume;
+        pmsh::failTogether(comm, [&]
         {
-            volume = meshPartitionVolume
+            volume = pmsh::meshPartitionVolume
             (
                 settings.volumeMesher, surface.points, surface.triangles,
-                volumeParameters(settings, comm.rank()), comm.rank(),
-                failedSurfaceFile(args.caseDir(), comm.rank())
+                pmsh::volumeParameters(settings, comm.rank()), comm.rank(),
+                pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank())
             );
         });
-        TetMesh& tets = volume.mesh;
-        const globalLabel nFineCells = logVolumeMeshing(comm, volume);
+        pmsh::TetMesh& tets = volume.mesh;
+        const pmsh::globalLabel nFineCells = pmsh::logVolumeMeshing(comm, volume);
         stages.end();
 
         stages.begin("numbering", "Stage 5: global point numbering");
-        const globalPointNumbering numbering
+        const pmsh::globalPointNumbering numbering
         (
-            comm, coarse, cellPart, surface, label(tets.points.size())
+            comm, coarse, cellPart, surface, pmsh::label(tets.points.size())
         );
         stages.end();
 
-        stages.begin("write", "Stage 6: writing " + std::string(output.binary ? "binary" : "ascii"));
-        PolyMesh mesh;
-        failTogether(comm, [&]
+        stages.begin
+        (
+            "write",
+            "Stage 6: writing " + std::string(IOstream::formatNames[runTime.writeFormat()])
+          + " through the " + std::string(fileHandler().type()) + " fileHandler"
+        );
+        pmsh::PolyMesh rankMesh;
+        pmsh::failTogether(comm, [&]
         {
-            mesh = tetsToPolyMesh
+            rankMesh = pmsh::tetsToPolyMesh
             (
                 std::move(tets.points), tets.tets,
                 surface.triangles, surface.region,
                 patches, comm.parallel() ? comm.rank() : -1,
                 numbering.globalIds()
             );
+            tets = pmsh::TetMesh();
         });
-        const procAddressing addressing = comm.parallel()
-            ? buildProcAddressing(comm, mesh, numbering.globalIds())
-            : procAddressing();
-        failTogether(comm, [&]
+        const pmsh::meshSizes sizes = pmsh::meshSizesOf(comm, rankMesh);
+        pmsh::procAddressing addressing;
+        if (comm.parallel())
         {
-            const foamFileFormat format
-                {output.binary, settings.labelBits, output.writePrecision};
-            writePolyMesh(target->polyMeshDir(), mesh, format, target->polyMeshLocation());
+            addressing = pmsh::buildProcAddressing(comm, rankMesh, numbering.globalIds());
+        }
+        pmsh::failTogether(comm, [&]
+        {
+            pmsh::checkGlobalNumbersFitLabel(comm, addressing);
+        });
+        pmsh::failTogether(comm, [&]
+        {
+            const autoPtr<fvMesh> meshPtr =
+                pmsh::toFvMesh(output->time(), std::move(rankMesh));
+            const fvMesh& mesh = meshPtr();
+            if (fileHandler().type() != outputFileHandler)
+            {
+                autoPtr<fileOperation> writer(fileOperation::New(outputFileHandler, false));
+                fileHandler(writer);
+            }
+            mesh.write();
             if (comm.parallel())
             {
-                writeProcAddressing
-                (
-                    target->polyMeshDir(), addressing, format, target->polyMeshLocation()
-                );
+                pmsh::writeProcAddressing(mesh, addressing);
                 #include "createFields.H"
             }
         });
-        target->commit(true);
-        if (comm.parallel() && comm.master())
+        output->commit();
+        if (comm.parallel())
         {
-            writeDecomposeParDict(args.caseDir(), comm.size());
+            pmsh::writeDecomposeParDict(runTime, decomposition);
         }
-        logWritten(comm, args.caseDir(), mesh);
+        pmsh::logWritten(comm, runTime.globalPath(), sizes);
         stages.end();
 
-        reportSummary
+        pmsh::reportSummary
         (
-            comm, args.caseDir(), settings, coarse, volume, nFineCells, stages
+            comm, runTime.globalPath(), settings, coarse, volume, nFineCells, stages
         );
     }
-    catch (const collectiveFailure& e)
+    catch (const pmsh::collectiveFailure& e)
     {
         // Every rank is here: leave together, one error in the log
         if (e.print())
         {
-            std::cerr << rankPrefix(comm) << e.report();
+            std::cerr << pmsh::rankPrefix(comm) << e.report() << std::flush;
         }
-        return 1;
+        exitCode = 1;
     }
     catch (const std::exception& e)
     {
         // A failure the other ranks cannot know about: stop them all
-        const FatalError* fatal = dynamic_cast<const FatalError*>(&e);
-        std::cerr << rankPrefix(comm)
-            << (fatal ? fatal->report() : FatalError(e.what(), "main").report());
+        std::cerr << pmsh::rankPrefix(comm)
+            << pmsh::asFatalError(std::current_exception()).report() << std::flush;
         comm.abort(1);
     }
 
-    return 0;
+    // Ends MPI (also the serial run's, started for Netgen) and exits
+    UPstream::exit(exitCode);
+    return exitCode;
 }
 
 

@@ -1,5 +1,5 @@
 #include "coarseMesh.H"
-#include "error.H"
+#include "pmshError.H"
 #include "failTogether.H"
 
 #include <algorithm>

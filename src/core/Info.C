@@ -29,6 +29,11 @@ void pmsh::setLogRank(int rank, bool parallel)
 {
     logRank = rank;
     logParallel = parallel;
+
+    // The log goes to a file in every Allrun: write it as the run goes, as
+    // OpenFOAM's Info << endl does, so that a long or killed run shows
+    // where it is (the log is small: flushing costs nothing)
+    std::cout << std::unitbuf;
 }
 
 

@@ -5,7 +5,7 @@
 #include "Geometry.H"
 #include "csgGeometry.H"
 #include "stlGeometry.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <algorithm>
 #include <cctype>

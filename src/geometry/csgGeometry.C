@@ -4,7 +4,7 @@
 
 #include "csgGeometry.H"
 #include "netgenInterface.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <algorithm>
 #include <fstream>

@@ -5,7 +5,7 @@
 
 #include "stlGeometry.H"
 #include "netgenInterface.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <algorithm>
 #include <cmath>

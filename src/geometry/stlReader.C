@@ -4,7 +4,7 @@
 
 #include "stlReader.H"
 #include "surfaceTopology.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <algorithm>
 #include <cctype>

@@ -1,100 +1,133 @@
 #include "caseOutput.H"
-#include "error.H"
+#include "pmshError.H"
+
+#include "fileOperation.H"
 
 #include <filesystem>
 #include <system_error>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
+
+namespace
+{
+
+const char* const scratchName = ".pmshFoam.tmp";
+
+} // End anonymous namespace
+
+
+std::vector<std::string> pmsh::caseOutput::targets() const
+{
+    if (!comm_.parallel())
+    {
+        return {"constant/polyMesh"};
+    }
+    std::vector<std::string> t{"processor" + std::to_string(comm_.rank())};
+    if (comm_.master())
+    {
+        t.push_back(Foam::fileOperation::processorsBaseDir + std::to_string(comm_.size()));
+    }
+    return t;
+}
+
 
 pmsh::caseOutput::caseOutput
 (
     const Communicator& comm,
-    const std::string& caseDir,
+    const Foam::Time& runTime,
     bool overwrite
 )
 :
     comm_(comm),
-    caseDir_(caseDir),
-    overwrite_(overwrite)
+    caseDir_(runTime.globalPath()),
+    scratchDir_(caseDir_ + "/" + scratchName)
 {
-    if (comm.parallel())
+    for (const std::string& target : targets())
     {
-        const std::string name = "processor" + std::to_string(comm.rank());
-        target_ = caseDir + "/" + name;
-        temporary_ = caseDir + "/." + name + ".pmshFoam-" + std::to_string(getpid());
-    }
-    else
-    {
-        target_ = caseDir + "/constant/polyMesh";
-        temporary_ = caseDir + "/constant/.polyMesh.pmshFoam-" + std::to_string(getpid());
+        if (fs::exists(caseDir_ + "/" + target) && !overwrite)
+        {
+            throw FatalError
+            (
+                msg() << "A mesh already exists in \"" << caseDir_ << "/" << target << "\"\n"
+                    << "Use -overwrite to replace it (it is replaced only if"
+                    << " meshing succeeds on every rank)",
+                "caseOutput"
+            );
+        }
     }
 
-    if (fs::exists(target_) && !overwrite)
+    // A scratch case left by a run that was killed
+    if (comm.master())
     {
-        throw FatalError
-        (
-            msg() << "A mesh already exists in \"" << target_ << "\"\n"
-                << "Use -overwrite to replace it (it is replaced only if"
-                << " meshing succeeds on every rank)",
-            "caseOutput"
-        );
+        std::error_code ec;
+        fs::remove_all(scratchDir_, ec);
     }
+    comm.all(true);
+
+    // The scratch case mirrors the real one: same controlDict (writeFormat,
+    // writePrecision, startTime), a processor case when parallel
+    const Foam::fileName caseName =
+        runTime.globalCaseName()/scratchName
+      / (comm.parallel() ? Foam::word("processor" + Foam::name(comm.rank())) : Foam::word::null);
+    scratchTime_.reset
+    (
+        new Foam::Time
+        (
+            runTime.controlDict(),
+            runTime.rootPath(),
+            caseName,
+            "system",
+            "constant",
+            false,      // no function objects
+            false       // no libs
+        )
+    );
 }
 
 
 pmsh::caseOutput::~caseOutput()
 {
-    if (!committed_)
+    if (!committed_ && comm_.master())
     {
         std::error_code ec;
-        fs::remove_all(temporary_, ec);
+        fs::remove_all(scratchDir_, ec);
     }
 }
 
 
-std::string pmsh::caseOutput::polyMeshDir() const
+void pmsh::caseOutput::commit()
 {
-    return comm_.parallel()
-        ? temporary_ + "/constant/polyMesh"
-        : temporary_;
-}
+    // The collated fileHandler may still be writing in its thread
+    Foam::fileHandler().flush();
+    comm_.all(true);
 
-
-std::string pmsh::caseOutput::timeDir(const std::string& timeName) const
-{
-    return temporary_ + "/" + timeName;
-}
-
-
-std::string pmsh::caseOutput::polyMeshLocation() const
-{
-    return comm_.parallel()
-        ? "processor" + std::to_string(comm_.rank()) + "/constant/polyMesh"
-        : "constant/polyMesh";
-}
-
-
-bool pmsh::caseOutput::commit(bool succeeded)
-{
-    if (!comm_.all(succeeded))
+    // Move the old output aside, the new into place, then drop the old:
+    // a target never exists half-written
+    for (const std::string& target : targets())
     {
-        std::error_code ec;
-        fs::remove_all(temporary_, ec);
-        return false;
+        const std::string from = scratchDir_ + "/" + target;
+        const std::string to = caseDir_ + "/" + target;
+        const std::string previous = scratchDir_ + "/" + target + ".previous";
+        if (!fs::exists(from) && !fs::exists(to))
+        {
+            continue;
+        }
+        if (fs::exists(to))
+        {
+            fs::create_directories(fs::path(previous).parent_path());
+            fs::rename(to, previous);
+        }
+        if (fs::exists(from))
+        {
+            fs::create_directories(fs::path(to).parent_path());
+            fs::rename(from, to);
+        }
     }
-
-    // Move the old output aside, the new into place, then drop the old: the
-    // target never exists half-written.
-    const std::string previous = temporary_ + ".previous";
-    if (fs::exists(target_))
-    {
-        fs::rename(target_, previous);
-    }
-    fs::rename(temporary_, target_);
-    std::error_code ec;
-    fs::remove_all(previous, ec);
     committed_ = true;
-    comm_.barrier();
-    return true;
+    comm_.all(true);
+    if (comm_.master())
+    {
+        std::error_code ec;
+        fs::remove_all(scratchDir_, ec);
+    }
 }

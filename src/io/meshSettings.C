@@ -1,14 +1,11 @@
 #include "meshSettings.H"
-#include "error.H"
 #include "VolumeMesher.H"
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
-#include <cstdlib>
+#include <limits>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -18,31 +15,30 @@ namespace pmsh
 namespace
 {
 
+using Foam::dictionary;
+using Foam::entry;
+using Foam::keyType;
+
 const char* const where = "pmsh::readMeshSettings";
 
-std::string joined(const std::vector<std::string>& words, const std::string& sep = ", ")
+std::string joined(const std::vector<std::string>& words)
 {
     std::string s;
-    for (std::size_t i = 0; i < words.size(); ++i)
+    for (const std::string& w : words)
     {
-        if (i) s += sep;
-        s += words[i];
+        s += (s.empty() ? "" : ", ") + w;
     }
     return s;
 }
 
 
-std::string lowerCase(std::string s)
+bool contains(const std::vector<std::string>& words, const std::string& w)
 {
-    for (char& c : s)
-    {
-        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    }
-    return s;
+    return std::find(words.begin(), words.end(), w) != words.end();
 }
 
 
-//- Edit distance, to suggest the entry a typo meant.
+//- Edit distance (ignoring case), to suggest the entry a typo meant.
 std::size_t editDistance(const std::string& a, const std::string& b)
 {
     std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
@@ -52,11 +48,10 @@ std::size_t editDistance(const std::string& a, const std::string& b)
         cur[0] = i;
         for (std::size_t j = 1; j <= b.size(); ++j)
         {
-            const std::size_t subst =
-                prev[j - 1]
-              + (std::tolower(static_cast<unsigned char>(a[i - 1]))
-              != std::tolower(static_cast<unsigned char>(b[j - 1])));
-            cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, subst});
+            const bool same =
+                std::tolower(static_cast<unsigned char>(a[i - 1]))
+             == std::tolower(static_cast<unsigned char>(b[j - 1]));
+            cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + !same});
         }
         std::swap(prev, cur);
     }
@@ -64,7 +59,7 @@ std::size_t editDistance(const std::string& a, const std::string& b)
 }
 
 
-//- " (did you mean 'grading'?)" when a valid name is close to key.
+//- " Did you mean 'grading'?" when a valid name is close to key.
 std::string suggestion(const std::string& key, const std::vector<std::string>& valid)
 {
     std::string best;
@@ -78,83 +73,72 @@ std::string suggestion(const std::string& key, const std::vector<std::string>& v
             best = v;
         }
     }
-    return best.empty() ? "" : " (did you mean '" + best + "'?)";
+    return best.empty() ? "" : " Did you mean '" + best + "'?";
 }
 
 
-//- The dictionary's own error, with what would be valid appended.
-template<class T>
-T valueOf(const dictionary& d, const entry& e, const std::string& valid)
+//- FatalIOError located at an entry of d: the file and the entry's lines.
+Foam::OSstream& entryError(const dictionary& d, const entry& e)
 {
-    try
-    {
-        return d.value<T>(e);
-    }
-    catch (const FatalError& err)
-    {
-        throw FatalError(err.message() + "\n" + valid, where);
-    }
-}
-
-
-//- "Unknown entry 'x' in dictionary ... (line N)".
-std::string unknownEntry(const dictionary& d, const entry& e)
-{
-    // entryInfo() starts with "Entry"
-    return "Unknown entry" + d.entryInfo(e).substr(5);
-}
-
-
-[[noreturn]] void invalid
-(
-    const dictionary& d,
-    const entry& e,
-    const std::string& valid
-)
-{
-    throw FatalError
+    return Foam::FatalIOError
     (
-        msg() << d.entryInfo(e) << " is " << e.text() << '\n' << valid,
-        where
+        where, __FILE__, __LINE__,
+        d.topDict().name(), e.startLineNumber(), e.endLineNumber()
     );
 }
 
 
-//- An optional number within [lo, hi].
-double boundedNumber
+//- "Entry 'key' is <value><note>" and what is valid, at the entry's line.
+void invalid
 (
     const dictionary& d,
-    const std::string& key,
-    double deflt,
-    double lo,
-    double hi,
-    const std::string& valid
+    const entry& e,
+    const std::string& valid,
+    const std::string& note = ""
 )
 {
-    const entry* e = d.findEntry(key, false);
-    if (!e) return deflt;
-    const double v = valueOf<double>(d, *e, valid);
-    if (!(v >= lo && v <= hi)) invalid(d, *e, valid);
-    return v;
+    const std::string value =
+        e.isStream() ? e.stream().toString() : "a sub-dictionary";
+    entryError(d, e)
+        << "Entry '" << e.keyword().c_str() << "' is " << value.c_str()
+        << note.c_str() << '\n' << valid.c_str()
+        << Foam::exit(Foam::FatalIOError);
 }
 
 
-//- An optional integer within [lo, hi].
-int boundedInteger
+//- The value of an entry of exactly one token, else nullptr.
+const Foam::token* single(const entry& e)
+{
+    return e.isStream() && e.stream().size() == 1 ? &e.stream()[0] : nullptr;
+}
+
+
+//- An optional number (an integer if integral) within [lo, hi].
+double bounded
 (
     const dictionary& d,
-    const std::string& key,
-    int deflt,
-    int lo,
-    int hi,
+    const char* key,
+    double deflt,
+    double lo,
+    double hi,
+    bool integral,
     const std::string& valid
 )
 {
-    const entry* e = d.findEntry(key, false);
+    const entry* e = d.findEntry(key, keyType::LITERAL);
     if (!e) return deflt;
-    const int v = valueOf<int>(d, *e, valid);
-    if (v < lo || v > hi) invalid(d, *e, valid);
-    return v;
+    const Foam::token* t = single(*e);
+    if
+    (
+        !t || !(integral ? t->isLabel() : t->isNumber())
+     || !(t->number() >= lo && t->number() <= hi)
+    )
+    {
+        // 1e1 is written back as 10: say why it is wrong
+        const bool real = integral && t && t->isScalar();
+        invalid(d, *e, valid, real ? " (not an integer)" : "");
+    }
+    return t->number();
 }
 
 
@@ -162,20 +146,19 @@ int boundedInteger
 std::string choice
 (
     const dictionary& d,
-    const std::string& key,
+    const char* key,
     const std::string& deflt,
     const std::vector<std::string>& choices
 )
 {
-    const std::string valid = "Valid values are: " + joined(choices);
-    const entry* e = d.findEntry(key, false);
+    const entry* e = d.findEntry(key, keyType::LITERAL);
     if (!e) return deflt;
-    const std::string v = valueOf<std::string>(d, *e, valid);
-    if (std::find(choices.begin(), choices.end(), v) == choices.end())
+    const Foam::token* t = single(*e);
+    if (!t || !t->isStringType() || !contains(choices, t->stringToken()))
     {
-        invalid(d, *e, valid);
+        invalid(d, *e, "Valid values are: " + joined(choices));
     }
-    return v;
+    return t->stringToken();
 }
 
 
@@ -184,13 +167,12 @@ std::string casePath(const std::string& caseDir, const std::string& name)
 {
     std::string rest = name;
     bool caseRelative = false;
-    for (const char* tag : {"<case>", "${FOAM_CASE}", "$FOAM_CASE"})
+    for (const std::string tag : {"<case>", "${FOAM_CASE}", "$FOAM_CASE"})
     {
-        const std::string t(tag);
-        if (rest.compare(0, t.size(), t) == 0)
+        if (rest.compare(0, tag.size(), tag) == 0)
         {
-            rest = rest.substr(t.size());
-            while (!rest.empty() && rest[0] == '/') rest.erase(0, 1);
+            rest.erase(0, tag.size());
+            rest.erase(0, rest.find_first_not_of('/'));
             caseRelative = true;
             break;
         }
@@ -206,148 +188,133 @@ std::string casePath(const std::string& caseDir, const std::string& name)
 }
 
 
-void checkGeometry(const dictionary& d, const std::string& caseDir, meshSettings& s)
+std::string readGeometry(const dictionary& d, const std::string& caseDir)
 {
-    const entry* e = d.findEntry("geometry", false);
+    const char* const validFiles =
+        "Valid geometry files: .geo (Netgen CSG), .stl (ascii or binary STL)";
+    const entry* e = d.findEntry("geometry", keyType::LITERAL);
     if (!e)
     {
-        throw FatalError
-        (
-            msg() << "Entry 'geometry' not found in dictionary \""
-                << d.name() << "\"\n"
-                << "Set it to the geometry file, relative to the case"
-                << " directory, e.g.\n"
-                << "    geometry \"constant/geometry/body.stl\";\n"
-                << "Valid geometry files: .geo (Netgen CSG), .stl (ascii or"
-                << " binary STL)",
-            where
-        );
+        FatalIOErrorInFunction(d)
+            << "Entry 'geometry' not found\n"
+            << "Set it to the geometry file, relative to the case directory,"
+            << " e.g.\n    geometry \"constant/geometry/body.stl\";\n"
+            << validFiles << Foam::exit(Foam::FatalIOError);
     }
-    const std::string valid =
-        "Expected the geometry file name in quotes, relative to the case"
-        " directory, e.g. \"constant/geometry/body.stl\"; valid files are .geo"
-        " (Netgen CSG) and .stl (ascii or binary STL)";
-    const std::string name = valueOf<std::string>(d, *e, valid);
-    const std::string path = casePath(caseDir, name);
-
-    const std::string ext = lowerCase(fs::path(path).extension().string());
-    if (ext != ".geo" && ext != ".stl")
-    {
-        const std::string given = fs::path(path).extension().string();
-        throw FatalError
-        (
-            msg() << d.entryInfo(*e) << " is \"" << name << "\": "
-                << (
-                       given.empty()
-                     ? std::string("the file name has no extension")
-                     : "the file extension '" + given + "' is not supported"
-                   ) << '\n'
-                << "Valid geometry file extensions are: .geo (Netgen CSG),"
-                << " .stl (ascii or binary STL), in any letter case",
-            where
-        );
-    }
-
-    std::error_code ec;
-    if (!fs::exists(path, ec))
-    {
-        throw FatalError
-        (
-            msg() << d.entryInfo(*e) << " is \"" << name << "\": the file \""
-                << path << "\" does not exist\n"
-                << "Relative names are relative to the case directory \""
-                << caseDir << "\"",
-            where
-        );
-    }
-    if (!fs::is_regular_file(path, ec))
-    {
-        throw FatalError
-        (
-            msg() << d.entryInfo(*e) << " is \"" << name << "\": \""
-                << path << "\" is not a regular file\n"
-                << "Expected a .geo or .stl file",
-            where
-        );
-    }
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe || probe.peek() == std::ifstream::traits_type::eof())
-    {
-        throw FatalError
-        (
-            msg() << d.entryInfo(*e) << " is \"" << name << "\": the file \""
-                << path << "\" "
-                << (probe ? "is empty" : "cannot be read (check its permissions)"),
-            where
-        );
-    }
-    s.geometryFile = path;
-}
-
-
-void checkPatches(const dictionary& d, meshSettings& s)
-{
-    const entry* e = d.findEntry("patches", false);
-    if (!e) return;
-
-    const std::vector<std::string> types = meshSettingsPatchTypes();
-    const std::string validTypes = "Valid patch types are: " + joined(types);
-
-    if (!e->isDict())
+    const Foam::token* t = single(*e);
+    if (!t || !t->isStringType())
     {
         invalid
         (
             d, *e,
+            "geometry must be a file name in quotes, relative to the case"
+            " directory, e.g. \"constant/geometry/body.stl\"\n"
+          + std::string(validFiles)
+        );
+    }
+    const std::string name = t->stringToken();
+    const std::string path = casePath(caseDir, name);
+
+    std::string ext = fs::path(path).extension().string();
+    const std::string given = ext;
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+
+    std::string problem;
+    std::error_code ec;
+    if (ext != ".geo" && ext != ".stl")
+    {
+        problem =
+            given.empty()
+          ? "the file name has no extension"
+          : "the file extension '" + given + "' is not supported";
+        problem +=
+            "\nValid geometry file extensions are: .geo (Netgen CSG),"
+            " .stl (ascii or binary STL), in any letter case";
+    }
+    else if (!fs::exists(path, ec))
+    {
+        problem =
+            "the file \"" + path + "\" does not exist\n"
+            "Relative names are relative to the case directory \""
+          + caseDir + "\"";
+    }
+    else if (!fs::is_regular_file(path, ec))
+    {
+        problem = "\"" + path + "\" is not a regular file\n" + validFiles;
+    }
+    else
+    {
+        std::ifstream probe(path, std::ios::binary);
+        if (!probe || probe.peek() == std::ifstream::traits_type::eof())
+        {
+            problem =
+                "the file \"" + path + "\" "
+              + (probe ? "is empty" : "cannot be read (check its permissions)");
+        }
+    }
+    if (!problem.empty())
+    {
+        entryError(d, *e)
+            << "Entry 'geometry' is \"" << name.c_str() << "\": "
+            << problem.c_str() << Foam::exit(Foam::FatalIOError);
+    }
+    return path;
+}
+
+
+void checkPatches(const dictionary& d, const entry& patchesEntry)
+{
+    const std::vector<std::string> types = meshSettingsPatchTypes();
+    const std::string validTypes = "Valid patch types are: " + joined(types);
+
+    if (!patchesEntry.isDict())
+    {
+        invalid
+        (
+            d, patchesEntry,
             "Expected a sub-dictionary of patch names (or \"regular"
             " expressions\") and their types, e.g.\n"
             "    patches\n    {\n        inlet { type patch; }\n"
             "        \".*\"  { type wall; }\n    }"
         );
     }
-    const dictionary& patches = e->dict();
-
-    for (const entry& p : patches.entries())
+    for (const entry& p : patchesEntry.dict())
     {
-        if (p.isDirective()) continue;
         if (!p.isDict())
         {
             invalid
             (
-                patches, p,
+                d, p,
                 "Expected '" + p.keyword() + " { type T; }' with T one of: "
               + joined(types)
             );
         }
-        const dictionary& pd = p.dict();
-        for (const entry& x : pd.entries())
+        for (const entry& x : p.dict())
         {
-            if (x.isDirective() || x.keyword() == "type") continue;
-            throw FatalError
-            (
-                msg() << unknownEntry(pd, x) << '\n'
+            if (x.keyword() != "type")
+            {
+                entryError(d, x)
+                    << "Unknown entry '" << x.keyword().c_str()
+                    << "' in patch '" << p.keyword().c_str() << "'\n"
                     << "The only valid entry of a patch is 'type' ("
-                    << joined(types) << ")",
-                where
-            );
+                    << joined(types).c_str() << ")"
+                    << Foam::exit(Foam::FatalIOError);
+            }
         }
-        const entry* t = pd.findEntry("type", false);
+        const entry* t = p.dict().findEntry("type", keyType::LITERAL);
         if (!t)
         {
-            throw FatalError
-            (
-                msg() << "Entry 'type' not found in dictionary \""
-                    << pd.name() << "\" (line " << p.line() << ")\n"
-                    << validTypes,
-                where
-            );
+            entryError(d, p)
+                << "Entry 'type' not found in patch '" << p.keyword().c_str()
+                << "'\n" << validTypes.c_str()
+                << Foam::exit(Foam::FatalIOError);
         }
-        const std::string type = valueOf<std::string>(pd, *t, validTypes);
-        if (std::find(types.begin(), types.end(), type) == types.end())
+        const Foam::token* tok = single(*t);
+        if (!tok || !tok->isStringType() || !contains(types, tok->stringToken()))
         {
-            invalid(pd, *t, validTypes);
+            invalid(d, *t, validTypes);
         }
     }
-    s.patches = patches;
 }
 
 } // End anonymous namespace
@@ -360,8 +327,7 @@ std::vector<std::string> meshSettingsEntries()
     return
     {
         "geometry", "maxCellSize", "grading", "refinementLevels",
-        "volumeMesher", "optimisationSteps", "volumeMesherThreads", "patches",
-        "labelSize"
+        "volumeMesher", "optimisationSteps", "volumeMesherThreads", "patches"
     };
 }
 
@@ -374,199 +340,101 @@ std::vector<std::string> meshSettingsPatchTypes()
 
 std::string meshSettings::patchType(const std::string& patchName) const
 {
-    const entry* e = patches.findEntry(patchName);
-    if (e && e->isDict())
-    {
-        const entry* t = e->dict().findEntry("type", false);
-        if (t) return e->dict().value<std::string>(*t);
-    }
-    return "wall";
+    // REGEX search: the literal name first, then the patterns, last first
+    const entry* e = patches.findEntry(patchName, keyType::REGEX);
+    return
+        e && e->isDict()
+      ? e->dict().getOrDefault<Foam::word>("type", "wall")
+      : "wall";
 }
 
 
 meshSettings readMeshSettings
 (
-    const std::string& caseDir,
-    const std::string& dictFile
+    const Foam::dictionary& dict,
+    const std::string& caseDir
 )
 {
-    const std::string path = casePath(caseDir, dictFile);
-    std::error_code ec;
-    if (!fs::exists(path, ec))
-    {
-        throw FatalError
-        (
-            msg() << "Cannot find the mesh dictionary \"" << path << "\"\n"
-                << "pmshFoam reads what to mesh and how fine from it"
-                << " (geometry, maxCellSize, ...): create it, or name another"
-                << " file with -dict",
-            where
-        );
-    }
-
-    const dictionary d = dictionary::read(path);
     meshSettings s;
-    s.dictFile = d.name();
+    s.dictFile = dict.name();
 
     // Typos first: an unknown entry would otherwise look like a missing one
     const std::vector<std::string> valid = meshSettingsEntries();
-    for (const entry& e : d.entries())
+    for (const entry& e : dict)
     {
-        if (e.isDirective() || e.keyword() == "FoamFile") continue;
-        if (std::find(valid.begin(), valid.end(), e.keyword()) == valid.end())
+        const std::string key = e.keyword();
+        if (key == "labelSize")
         {
-            throw FatalError
-            (
-                msg() << unknownEntry(d, e)
-                    << suggestion(e.keyword(), valid) << '\n'
-                    << "Valid entries are: " << joined(valid),
-                where
-            );
+            entryError(dict, e)
+                << "Entry 'labelSize' is no longer supported: labels follow"
+                << " the OpenFOAM build (WM_LABEL_SIZE; this build has "
+                << int(8*sizeof(Foam::label)) << "-bit labels)\n"
+                << "Remove the entry; for 64-bit labels use pmshFoam built"
+                << " with an OpenFOAM of WM_LABEL_SIZE=64"
+                << Foam::exit(Foam::FatalIOError);
+        }
+        if (key != "FoamFile" && (e.keyword().isPattern() || !contains(valid, key)))
+        {
+            entryError(dict, e)
+                << "Unknown entry '" << key.c_str() << "'."
+                << suggestion(key, valid).c_str() << '\n'
+                << "Valid entries are: " << joined(valid).c_str()
+                << Foam::exit(Foam::FatalIOError);
         }
     }
 
-    checkGeometry(d, caseDir, s);
+    s.geometryFile = readGeometry(dict, caseDir);
 
+    const std::string validSize =
+        "maxCellSize must be a number > 0: the largest edge length of the"
+        " coarse mesh, in the units of the geometry";
+    if (!dict.findEntry("maxCellSize", keyType::LITERAL))
     {
-        const std::string validSize =
-            "Valid values are numbers > 0: the largest edge length of the"
-            " coarse mesh, in the units of the geometry";
-        const entry* e = d.findEntry("maxCellSize", false);
-        if (!e)
-        {
-            throw FatalError
-            (
-                msg() << "Entry 'maxCellSize' not found in dictionary \""
-                    << d.name() << "\"\n" << validSize,
-                where
-            );
-        }
-        s.maxCellSize = valueOf<double>(d, *e, validSize);
-        if (!(s.maxCellSize > 0) || !std::isfinite(s.maxCellSize))
-        {
-            invalid(d, *e, validSize);
-        }
+        FatalIOErrorInFunction(dict)
+            << "Entry 'maxCellSize' not found\n" << validSize.c_str()
+            << Foam::exit(Foam::FatalIOError);
     }
-
-    s.grading = boundedNumber
+    s.maxCellSize = bounded
     (
-        d, "grading", 0.3, 0, 1,
-        "Valid values are 0 <= grading <= 1 (0 uniform .. 1 aggressive)"
+        dict, "maxCellSize", 0, std::numeric_limits<double>::min(),
+        std::numeric_limits<double>::max(), false, validSize
     );
-    s.refinementLevels = boundedInteger
+
+    s.grading = bounded
     (
-        d, "refinementLevels", 1, 0, 10,
+        dict, "grading", 0.3, 0, 1, false,
+        "Valid values are numbers 0 <= grading <= 1 (0 uniform .. 1 aggressive)"
+    );
+    s.refinementLevels = bounded
+    (
+        dict, "refinementLevels", 1, 0, 10, true,
         "Valid values are integers 0 <= refinementLevels <= 10"
         " (each level multiplies the number of cells by about 8)"
     );
-    if (const entry* e = d.findEntry("refinementLevels", false))
+    if (const entry* e = dict.findEntry("refinementLevels", keyType::LITERAL))
     {
-        s.refinementLevelsLine = e->line();
+        s.refinementLevelsLine = e->startLineNumber();
     }
-    s.volumeMesher = choice(d, "volumeMesher", "netgen", VolumeMesher::names());
-    s.optimisationSteps = boundedInteger
+    s.volumeMesher = choice(dict, "volumeMesher", "netgen", VolumeMesher::names());
+    s.optimisationSteps = bounded
     (
-        d, "optimisationSteps", 3, 0, 100,
+        dict, "optimisationSteps", 3, 0, 100, true,
         "Valid values are integers 0 <= optimisationSteps <= 100"
     );
-    s.volumeMesherThreads = boundedInteger
+    s.volumeMesherThreads = bounded
     (
-        d, "volumeMesherThreads", 1, 1, 256,
+        dict, "volumeMesherThreads", 1, 1, 256, true,
         "Valid values are integers 1 <= volumeMesherThreads <= 256"
         " (threads per rank; 1 with one rank per core)"
     );
 
+    if (const entry* e = dict.findEntry("patches", keyType::LITERAL))
     {
-        int deflt = 32;
-        if (const char* env = std::getenv("WM_LABEL_SIZE"))
-        {
-            if (std::string(env) == "64") deflt = 64;
-        }
-        const std::string validLabel =
-            "Valid values are 32 or 64 (bits per label in the polyMesh"
-            " files; 64 for meshes beyond 2 billion faces)";
-        s.labelBits = deflt;
-        if (const entry* e = d.findEntry("labelSize", false))
-        {
-            s.labelBits = valueOf<int>(d, *e, validLabel);
-            if (s.labelBits != 32 && s.labelBits != 64)
-            {
-                invalid(d, *e, validLabel);
-            }
-        }
+        checkPatches(dict, *e);
+        s.patches = e->dict();
     }
-
-    checkPatches(d, s);
 
     return s;
-}
-
-
-// * * * * * * * * * * * * * * * * writeSettings * * * * * * * * * * * * * //
-
-std::string timeName(double t, int precision)
-{
-    std::ostringstream os;
-    os.imbue(std::locale::classic());
-    os.precision(precision);
-    os << t;
-    return os.str();
-}
-
-
-writeSettings readWriteSettings(const std::string& caseDir)
-{
-    const std::string path =
-        (fs::path(caseDir)/"system"/"controlDict").lexically_normal().string();
-    std::error_code ec;
-    if (!fs::exists(path, ec))
-    {
-        throw FatalError
-        (
-            msg() << "Cannot find \"" << fs::absolute(path, ec).string()
-                << "\"\n"
-                << "pmshFoam reads writeFormat, writePrecision and startTime"
-                << " from system/controlDict, as every OpenFOAM application"
-                << " does: is \"" << caseDir << "\" an OpenFOAM case?",
-            "pmsh::readWriteSettings"
-        );
-    }
-
-    const dictionary d = dictionary::read(path);
-    writeSettings w;
-
-    w.binary = (choice(d, "writeFormat", "ascii", {"ascii", "binary"}) == "binary");
-    w.writePrecision = boundedInteger
-    (
-        d, "writePrecision", 6, 1, 30,
-        "Valid values are integers 1 <= writePrecision <= 30"
-    );
-
-    // The time directory name as OpenFOAM forms it
-    const std::string format =
-        choice(d, "timeFormat", "general", {"general", "fixed", "scientific"});
-    const int precision = boundedInteger
-    (
-        d, "timePrecision", 6, 1, 30,
-        "Valid values are integers 1 <= timePrecision <= 30"
-    );
-    double start = 0;
-    if (const entry* e = d.findEntry("startTime", false))
-    {
-        start = valueOf<double>
-        (
-            d, *e, "Valid values are numbers: the start time (e.g. 0)"
-        );
-    }
-    std::ostringstream os;
-    os.imbue(std::locale::classic());
-    if (format == "fixed") os << std::fixed;
-    if (format == "scientific") os << std::scientific;
-    os.precision(precision);
-    os << start;
-    w.startTime = os.str();
-
-    return w;
 }
 
 } // End namespace pmsh

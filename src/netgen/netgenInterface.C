@@ -41,7 +41,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "netgenInterface.H"
-#include "error.H"
+#include "pmshError.H"
 #include "surfaceTopology.H"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include "globalNumbering.H"
 #include "coarseMesh.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <algorithm>
 #include <unordered_map>

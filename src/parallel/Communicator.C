@@ -1,134 +1,91 @@
 #include "Communicator.H"
-#include "error.H"
+#include "pmshError.H"
+
+#include "Pstream.H"
+#include "PstreamReduceOps.H"
 
 #include <cstdlib>
-#include <limits>
-
-namespace
-{
-
-// MPI counts are int: move large buffers in chunks below 2^31 bytes
-constexpr std::size_t maxChunk = std::size_t(1) << 30;
-
-} // End anonymous namespace
-
 
 pmsh::Communicator::Communicator()
 :
-    parallel_(false),
-    rank_(0),
-    size_(1)
+    parallel_(Foam::UPstream::parRun()),
+    rank_(Foam::UPstream::myProcNo()),
+    size_(Foam::UPstream::nProcs())
 {}
-
-
-pmsh::Communicator::Communicator(int& argc, char**& argv)
-:
-    parallel_(true),
-    rank_(0),
-    size_(1)
-{
-    // Volume meshing runs in forked children that make no MPI calls (see
-    // childProcess.H): tell Open MPI not to warn about the fork, unless
-    // the user has set it
-    ::setenv("OMPI_MCA_mpi_warn_on_fork", "0", 0);
-
-    int provided = 0;
-    MPI_Init_thread(&argc, &argv, MPI_THREAD_SINGLE, &provided);
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &size_);
-}
-
-
-pmsh::Communicator::~Communicator()
-{
-    if (parallel_)
-    {
-        MPI_Finalize();
-    }
-}
-
-
-void pmsh::Communicator::barrier() const
-{
-    if (parallel_)
-    {
-        MPI_Barrier(MPI_COMM_WORLD);
-    }
-}
 
 
 void pmsh::Communicator::abort(int errorCode) const
 {
     if (parallel_)
     {
-        MPI_Abort(MPI_COMM_WORLD, errorCode);
+        Foam::UPstream::abort();
     }
     std::exit(errorCode);
+}
+
+
+double pmsh::Communicator::sum(double x) const
+{
+    return Foam::returnReduce(x, Foam::sumOp<double>());
+}
+
+std::int64_t pmsh::Communicator::sum(std::int64_t x) const
+{
+    return Foam::returnReduce(x, Foam::sumOp<std::int64_t>());
+}
+
+double pmsh::Communicator::min(double x) const
+{
+    return Foam::returnReduce(x, Foam::minOp<double>());
+}
+
+double pmsh::Communicator::max(double x) const
+{
+    return Foam::returnReduce(x, Foam::maxOp<double>());
+}
+
+std::int64_t pmsh::Communicator::max(std::int64_t x) const
+{
+    return Foam::returnReduce(x, Foam::maxOp<std::int64_t>());
+}
+
+bool pmsh::Communicator::all(bool flag) const
+{
+    return Foam::returnReduce(flag, Foam::andOp<bool>());
+}
+
+bool pmsh::Communicator::any(bool flag) const
+{
+    return Foam::returnReduce(flag, Foam::orOp<bool>());
 }
 
 
 namespace
 {
 
+// x of every rank, in rank order, on every rank
 template<class T>
-T allReduce(bool parallel, T x, MPI_Datatype type, MPI_Op op)
+Foam::List<T> gatherAll(T x)
 {
-    if (parallel)
-    {
-        MPI_Allreduce(MPI_IN_PLACE, &x, 1, type, op, MPI_COMM_WORLD);
-    }
-    return x;
+    Foam::List<T> all(Foam::UPstream::nProcs(), x);
+    all[Foam::UPstream::myProcNo()] = x;
+    Foam::Pstream::gatherList(all);
+    Foam::Pstream::scatterList(all);
+    return all;
 }
 
 } // End anonymous namespace
 
 
-double pmsh::Communicator::sum(double x) const
-{
-    return allReduce(parallel_, x, MPI_DOUBLE, MPI_SUM);
-}
-
-std::int64_t pmsh::Communicator::sum(std::int64_t x) const
-{
-    return allReduce(parallel_, x, MPI_INT64_T, MPI_SUM);
-}
-
-double pmsh::Communicator::min(double x) const
-{
-    return allReduce(parallel_, x, MPI_DOUBLE, MPI_MIN);
-}
-
-double pmsh::Communicator::max(double x) const
-{
-    return allReduce(parallel_, x, MPI_DOUBLE, MPI_MAX);
-}
-
-std::int64_t pmsh::Communicator::max(std::int64_t x) const
-{
-    return allReduce(parallel_, x, MPI_INT64_T, MPI_MAX);
-}
-
-bool pmsh::Communicator::all(bool flag) const
-{
-    return allReduce(parallel_, int(flag), MPI_INT, MPI_MIN) != 0;
-}
-
-bool pmsh::Communicator::any(bool flag) const
-{
-    return allReduce(parallel_, int(flag), MPI_INT, MPI_MAX) != 0;
-}
-
-
 std::int64_t pmsh::Communicator::exclusiveScan(std::int64_t x) const
 {
+    // Not globalIndex: its offsets are labels (32-bit in Debian's build)
+    // and global point counts pass 2^31
+    const Foam::List<std::int64_t> all = gatherAll(x);
     std::int64_t below = 0;
-    if (parallel_)
+    for (int r = 0; r < rank_; ++r)
     {
-        MPI_Exscan(&x, &below, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
-        if (rank_ == 0)
-        {
-            below = 0;  // MPI leaves rank 0's result undefined
-        }
+        below += all[r];
     }
     return below;
 }
@@ -136,23 +93,20 @@ std::int64_t pmsh::Communicator::exclusiveScan(std::int64_t x) const
 
 std::vector<double> pmsh::Communicator::allGather(double x) const
 {
-    std::vector<double> all(size_, x);
-    if (parallel_)
-    {
-        MPI_Allgather(&x, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, MPI_COMM_WORLD);
-    }
-    return all;
+    const Foam::List<double> all = gatherAll(x);
+    return std::vector<double>(all.begin(), all.end());
 }
 
 
-void pmsh::Communicator::broadcastBytes(void* data, std::size_t nBytes) const
+void pmsh::Communicator::broadcastBytes(std::vector<char>& bytes) const
 {
-    char* p = static_cast<char*>(data);
-    for (std::size_t done = 0; done < nBytes; done += maxChunk)
+    Foam::List<char> buffer;
+    if (master())
     {
-        const std::size_t n = std::min(maxChunk, nBytes - done);
-        MPI_Bcast(p + done, int(n), MPI_BYTE, 0, MPI_COMM_WORLD);
+        buffer = Foam::UList<char>(bytes.data(), Foam::label(bytes.size()));
     }
+    Foam::Pstream::scatter(buffer);
+    bytes.assign(buffer.begin(), buffer.end());
 }
 
 
@@ -170,47 +124,21 @@ std::vector<std::vector<char>> pmsh::Communicator::exchangeBytes
         throw FatalError(msg() << "exchange needs one buffer per rank", "Communicator::exchange");
     }
 
-    // Sizes first, then point-to-point messages in chunks (no 2 GiB limit)
-    std::vector<std::uint64_t> sendSizes(size_), recvSizes(size_);
+    Foam::List<Foam::List<char>> sendBuffers(size_);
     for (int r = 0; r < size_; ++r)
     {
-        sendSizes[r] = send[r].size();
+        sendBuffers[r] = Foam::UList<char>
+        (
+            const_cast<char*>(send[r].data()), Foam::label(send[r].size())
+        );
     }
-    MPI_Alltoall
-    (
-        sendSizes.data(), 1, MPI_UINT64_T,
-        recvSizes.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD
-    );
+    Foam::List<Foam::List<char>> recvBuffers;
+    Foam::Pstream::exchange<Foam::List<char>, char>(sendBuffers, recvBuffers);
 
     std::vector<std::vector<char>> recv(size_);
-    std::vector<MPI_Request> requests;
-    const int tag = 4711;
     for (int r = 0; r < size_; ++r)
     {
-        recv[r].resize(recvSizes[r]);
-        for (std::size_t done = 0; done < recvSizes[r]; done += maxChunk)
-        {
-            requests.emplace_back();
-            MPI_Irecv
-            (
-                recv[r].data() + done, int(std::min(maxChunk, recvSizes[r] - done)),
-                MPI_BYTE, r, tag, MPI_COMM_WORLD, &requests.back()
-            );
-        }
+        recv[r].assign(recvBuffers[r].begin(), recvBuffers[r].end());
     }
-    for (int r = 0; r < size_; ++r)
-    {
-        for (std::size_t done = 0; done < sendSizes[r]; done += maxChunk)
-        {
-            requests.emplace_back();
-            MPI_Isend
-            (
-                const_cast<char*>(send[r].data()) + done,
-                int(std::min(maxChunk, sendSizes[r] - done)),
-                MPI_BYTE, r, tag, MPI_COMM_WORLD, &requests.back()
-            );
-        }
-    }
-    MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
     return recv;
 }

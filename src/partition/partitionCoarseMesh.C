@@ -1,13 +1,22 @@
 #include "partitionCoarseMesh.H"
 #include "coarseMesh.H"
-#include "error.H"
+#include "pmshError.H"
 #include "failTogether.H"
+#include "Info.H"
 
-#include <metis.h>
+// OpenFOAM
+#include "argList.H"
+#include "decompositionMethod.H"
+#include "dictionary.H"
+#include "IFstream.H"
+#include "OSspecific.H"
+#include "UPstream.H"
 
 #include <algorithm>
+#include <cctype>
 #include <map>
 #include <numeric>
+#include <set>
 #include <tuple>
 
 namespace
@@ -390,7 +399,424 @@ pmsh::label pmsh::countNonManifoldParts
 }
 
 
-std::vector<pmsh::label> pmsh::partitionCells(const CoarseMesh& coarse, label nParts)
+
+namespace
+{
+
+using namespace pmsh;
+
+// While one lives, OpenFOAM's FatalError and FatalIOError throw (rather
+// than end the process); the previous setting comes back after.
+class foamErrorsThrow
+{
+    const bool error_;
+    const bool ioError_;
+public:
+    foamErrorsThrow()
+    :
+        error_(Foam::FatalError.throwExceptions(true)),
+        ioError_(Foam::FatalIOError.throwExceptions(true))
+    {}
+    ~foamErrorsThrow()
+    {
+        Foam::FatalIOError.throwExceptions(ioError_);
+        Foam::FatalError.throwExceptions(error_);
+    }
+    foamErrorsThrow(const foamErrorsThrow&) = delete;
+    foamErrorsThrow& operator=(const foamErrorsThrow&) = delete;
+};
+
+
+// While one lives, OpenFOAM runs serial: the decomposition is the master's
+// alone (the others do not take part in its reductions), as OpenFOAM's own
+// utilities do it (renumberMesh)
+class serialSection
+{
+    const bool oldParRun_;
+public:
+    serialSection()
+    :
+        oldParRun_(Foam::UPstream::parRun())
+    {
+        Foam::UPstream::parRun() = false;
+    }
+    ~serialSection()
+    {
+        Foam::UPstream::parRun() = oldParRun_;
+    }
+    serialSection(const serialSection&) = delete;
+    serialSection& operator=(const serialSection&) = delete;
+};
+
+
+// The text of an OpenFOAM error: its message (Foam::error::what() says only
+// "std::exception"), and the file and line of an IOerror
+std::string foamErrorText(const Foam::error& e)
+{
+    std::string text = e.message();
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
+    {
+        text.pop_back();
+    }
+    if (const auto* io = dynamic_cast<const Foam::IOerror*>(&e))
+    {
+        if (!io->ioFileName().empty())
+        {
+            text += "\n(" + io->ioFileName();
+            if (io->ioStartLineNumber() > 0)
+            {
+                text += " at line " + std::to_string(io->ioStartLineNumber());
+            }
+            text += ")";
+        }
+    }
+    return text;
+}
+
+
+// Methods whose decompose(globalCellCells, ...) is NotImplemented: they need
+// an OpenFOAM polyMesh, which the coarse mesh is not
+const std::set<std::string> meshOnlyMethods{"manual", "structured"};
+
+std::vector<std::string> knownMethods()
+{
+    std::vector<std::string> methods;
+    const auto* table = Foam::decompositionMethod::dictionaryConstructorTablePtr_;
+    if (table)
+    {
+        for (const Foam::word& name : table->sortedToc())
+        {
+            if (!meshOnlyMethods.count(name))
+            {
+                methods.push_back(name);
+            }
+        }
+    }
+    return methods;
+}
+
+
+// The method's name ("" when the dictionary has none)
+std::string methodName(const Foam::dictionary& dict)
+{
+    const foamErrorsThrow throwing;
+    Foam::word method;
+    try
+    {
+        dict.readIfPresent("method", method);
+    }
+    catch (const Foam::error&)
+    {
+        return "(not a word)";
+    }
+    return method;
+}
+
+
+// The name of the default dictionary (a valid fileName: no spaces)
+const char* const defaultName = "defaultDecomposition";
+
+// Where the dictionary comes from, for messages
+std::string dictSource(const Foam::dictionary& dict)
+{
+    if (dict.name() == defaultName)
+    {
+        return "the default, as the case has no decomposeParDict";
+    }
+    if (dict.name().empty())
+    {
+        return "the decomposition dictionary";
+    }
+    return dict.name();
+}
+
+
+// "decomposition method 'x' (from <dict>)": the start of every message
+std::string methodFrom(const Foam::dictionary& dict)
+{
+    return "decomposition method '" + methodName(dict) + "' (from "
+        + dictSource(dict) + ")";
+}
+
+
+// Decompose with OpenFOAM's decompositionMethod; cellPart[c] in [0, nParts)
+std::vector<label> decomposeCells
+(
+    const CoarseMesh& coarse,
+    label nParts,
+    const Foam::dictionary& decompositionDict
+)
+{
+    const label nCells = coarse.nCells();
+
+    Foam::dictionary dict(decompositionDict);
+    dict.set("numberOfSubdomains", Foam::label(nParts));
+
+    const std::string method = methodName(dict);
+    const std::vector<std::string> known = knownMethods();
+    if (method.empty())
+    {
+        throw FatalError
+        (
+            msg() << "No decomposition 'method' in " << dictSource(dict) << ".\n"
+                << "Valid decomposition methods: " << validDecompositionMethods(),
+            "partitionCells"
+        );
+    }
+    if (meshOnlyMethods.count(method))
+    {
+        throw FatalError
+        (
+            msg() << "The " << methodFrom(dict) << " needs an OpenFOAM"
+                << " polyMesh: it cannot split the coarse tet mesh.\n"
+                << "Valid decomposition methods: " << validDecompositionMethods(),
+            "partitionCells"
+        );
+    }
+    if (std::find(known.begin(), known.end(), method) == known.end())
+    {
+        throw FatalError
+        (
+            msg() << "Unknown " << methodFrom(dict) << ".\n"
+                << "Valid decomposition methods: " << validDecompositionMethods(),
+            "partitionCells"
+        );
+    }
+
+    // The graph: the face neighbours of every coarse tet; the points: the
+    // tet centroids; the weights: 1
+    const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
+    Foam::labelListList cellCells(nCells);
+    Foam::pointField centres(nCells);
+    const Foam::scalarField weights(nCells, 1.0);
+    for (label c = 0; c < nCells; ++c)
+    {
+        Foam::labelList& nbrs = cellCells[c];
+        nbrs.setSize(4);
+        label n = 0;
+        for (label nbr : neighbours[c])
+        {
+            if (!isBoundaryNeighbour(nbr))
+            {
+                nbrs[n++] = nbr;
+            }
+        }
+        nbrs.setSize(n);
+
+        const tetCell& t = coarse.tets[c];
+        const point centroid = 0.25*
+        (
+            (coarse.points[t[0]] + coarse.points[t[1]])
+          + (coarse.points[t[2]] + coarse.points[t[3]])
+        );
+        centres[c] = Foam::point(centroid[0], centroid[1], centroid[2]);
+    }
+
+    Foam::labelList decomp;
+    try
+    {
+        const foamErrorsThrow throwing;
+        const serialSection serial;
+        Foam::autoPtr<Foam::decompositionMethod> decomposer =
+            Foam::decompositionMethod::New(dict);
+        decomp = decomposer->decompose(cellCells, centres, weights);
+    }
+    catch (const Foam::error& e)
+    {
+        throw FatalError
+        (
+            msg() << "The " << methodFrom(dict) << " failed for "
+                << nCells << " coarse cells into " << nParts << " parts:\n"
+                << foamErrorText(e) << "\n"
+                << "Valid decomposition methods: " << validDecompositionMethods(),
+            "partitionCells"
+        );
+    }
+
+    // Trust no method blindly: a stub library or a bad manual file gives
+    // nonsense that would crash the later stages
+    std::string problem;
+    if (decomp.size() != nCells)
+    {
+        problem = "gave " + std::to_string(decomp.size()) + " parts for "
+            + std::to_string(nCells) + " cells";
+    }
+    else
+    {
+        for (label c = 0; c < nCells && problem.empty(); ++c)
+        {
+            if (decomp[c] < 0 || decomp[c] >= nParts)
+            {
+                problem = "put cell " + std::to_string(c) + " in part "
+                    + std::to_string(decomp[c]) + ", not one of 0.."
+                    + std::to_string(nParts - 1);
+            }
+        }
+    }
+    if (!problem.empty())
+    {
+        throw FatalError
+        (
+            msg() << "The " << methodFrom(dict) << " " << problem << ".\n"
+                << "Valid decomposition methods: " << validDecompositionMethods(),
+            "partitionCells"
+        );
+    }
+    return std::vector<label>(decomp.begin(), decomp.end());
+}
+
+} // End anonymous namespace
+
+
+Foam::fileName pmsh::decompositionDictFile(const Foam::argList& args)
+{
+    Foam::fileName file;
+    if (args.readIfPresent("decomposeParDict", file))
+    {
+        // As argList resolves it for a parallel run (it leaves it as given
+        // in a serial one)
+        if (Foam::isDir(file))
+        {
+            file /= "decomposeParDict";
+        }
+        if (!file.isAbsolute() && !file.starts_with('.'))
+        {
+            file = args.globalPath()/file;
+        }
+        file.expand();
+        file.clean();
+        return file;
+    }
+    return args.globalPath()/"system"/"decomposeParDict";
+}
+
+
+Foam::dictionary pmsh::decompositionDict
+(
+    const Foam::fileName& dictFile,
+    int nParts,
+    bool required
+)
+{
+    Foam::dictionary dict;
+    if (Foam::isFile(dictFile))
+    {
+        try
+        {
+            const foamErrorsThrow throwing;
+            Foam::IFstream is(dictFile);
+            if (!is.good())
+            {
+                throw FatalError
+                (
+                    msg() << "Cannot open the decomposition dictionary " << dictFile,
+                    "decompositionDict"
+                );
+            }
+            dict = Foam::dictionary(is);
+            dict.name() = dictFile;
+        }
+        catch (const Foam::error& e)
+        {
+            throw FatalError
+            (
+                msg() << "Cannot read the decomposition dictionary " << dictFile
+                    << ":\n" << foamErrorText(e),
+                "decompositionDict"
+            );
+        }
+        if (!dict.found("method"))
+        {
+            throw FatalError
+            (
+                msg() << "No 'method' in " << dictFile << ".\n"
+                    << "Valid decomposition methods: " << validDecompositionMethods(),
+                "decompositionDict"
+            );
+        }
+    }
+    else if (required)
+    {
+        throw FatalError
+        (
+            msg() << "The decomposition dictionary " << dictFile
+                << " (-decomposeParDict) does not exist",
+            "decompositionDict"
+        );
+    }
+    else
+    {
+        dict = defaultDecompositionDict();
+    }
+
+    // numberOfSubdomains is the number of ranks, whatever the file says
+    if (dict.found("numberOfSubdomains"))
+    {
+        std::string inFile = "?";
+        Foam::label n = -1;
+        try
+        {
+            const foamErrorsThrow throwing;
+            inFile = dict.lookup("numberOfSubdomains").toString();
+            dict.readEntry("numberOfSubdomains", n);
+        }
+        catch (const Foam::error&)
+        {
+            n = -1;     // not a number: replaced all the same
+        }
+        if (n != nParts)
+        {
+            pmsh::Info()
+                << "Note: numberOfSubdomains " << inFile << " in " << dictFile
+                << " is replaced by the number of ranks, " << nParts << "\n";
+        }
+    }
+    dict.set("numberOfSubdomains", Foam::label(nParts));
+    return dict;
+}
+
+
+Foam::dictionary pmsh::decompositionDict(const Foam::argList& args, int nParts)
+{
+    return decompositionDict
+    (
+        decompositionDictFile(args),
+        nParts,
+        args.found("decomposeParDict")
+    );
+}
+
+
+const Foam::dictionary& pmsh::defaultDecompositionDict()
+{
+    static const Foam::dictionary dict = []
+    {
+        Foam::dictionary d;
+        d.name() = defaultName;
+        d.add("method", Foam::word("metis"));
+        return d;
+    }();
+    return dict;
+}
+
+
+std::string pmsh::validDecompositionMethods()
+{
+    std::string list = "(";
+    for (const std::string& method : knownMethods())
+    {
+        list += (list.size() > 1 ? " " : "") + method;
+    }
+    return list + ")";
+}
+
+
+std::vector<pmsh::label> pmsh::partitionCells
+(
+    const CoarseMesh& coarse,
+    label nParts,
+    const Foam::dictionary& decompositionDict
+)
 {
     const label nCells = coarse.nCells();
     if (nParts > nCells)
@@ -404,57 +830,12 @@ std::vector<pmsh::label> pmsh::partitionCells(const CoarseMesh& coarse, label nP
             "partitionCells"
         );
     }
-    std::vector<label> cellPart(nCells, 0);
     if (nParts == 1)
     {
-        return cellPart;
+        return std::vector<label>(nCells, 0);
     }
 
-    idx_t ne = nCells;
-    idx_t nn = coarse.nPoints();
-    std::vector<idx_t> eptr(nCells + 1), eind(4*std::size_t(nCells));
-    for (label c = 0; c < nCells; ++c)
-    {
-        eptr[c] = 4*c;
-        for (int k = 0; k < 4; ++k) eind[4*c + k] = coarse.tets[c][k];
-    }
-    eptr[nCells] = 4*nCells;
-
-    idx_t ncommon = 3;          // dual graph edges through faces
-    idx_t np = nParts;
-    idx_t objval = 0;
-    std::vector<idx_t> epart(nCells), npart(nn);
-    idx_t options[METIS_NOPTIONS];
-    METIS_SetDefaultOptions(options);
-    options[METIS_OPTION_NUMBERING] = 0;
-    options[METIS_OPTION_CONTIG] = 1;
-    options[METIS_OPTION_SEED] = 1;     // same partition on every run
-
-    int status = METIS_PartMeshDual
-    (
-        &ne, &nn, eptr.data(), eind.data(), nullptr, nullptr,
-        &ncommon, &np, nullptr, options, &objval, epart.data(), npart.data()
-    );
-    if (status == METIS_ERROR_INPUT)
-    {
-        // Contiguous parts are impossible for a domain in several pieces
-        options[METIS_OPTION_CONTIG] = 0;
-        status = METIS_PartMeshDual
-        (
-            &ne, &nn, eptr.data(), eind.data(), nullptr, nullptr,
-            &ncommon, &np, nullptr, options, &objval, epart.data(), npart.data()
-        );
-    }
-    if (status != METIS_OK)
-    {
-        throw FatalError
-        (
-            msg() << "METIS_PartMeshDual failed (status " << status << ") for "
-                << nCells << " cells into " << nParts << " parts",
-            "partitionCells"
-        );
-    }
-    std::copy(epart.begin(), epart.end(), cellPart.begin());
+    std::vector<label> cellPart = decomposeCells(coarse, nParts, decompositionDict);
     repairPartition(coarse, nParts, cellPart);
     return cellPart;
 }
@@ -463,7 +844,8 @@ std::vector<pmsh::label> pmsh::partitionCells(const CoarseMesh& coarse, label nP
 std::vector<pmsh::label> pmsh::partitionCoarseMesh
 (
     const Communicator& comm,
-    const CoarseMesh& coarse
+    const CoarseMesh& coarse,
+    const Foam::dictionary& decompositionDict
 )
 {
     std::vector<label> cellPart;
@@ -471,7 +853,7 @@ std::vector<pmsh::label> pmsh::partitionCoarseMesh
     {
         if (comm.master())
         {
-            cellPart = partitionCells(coarse, comm.size());
+            cellPart = partitionCells(coarse, comm.size(), decompositionDict);
         }
     });
     comm.broadcast(cellPart);

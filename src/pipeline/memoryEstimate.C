@@ -31,8 +31,11 @@
 \*---------------------------------------------------------------------------*/
 
 #include "memoryEstimate.H"
-#include "clock.H"
-#include "error.H"
+
+#include "OSspecific.H"
+#include "Pstream.H"
+#include "stageClock.H"
+#include "pmshError.H"
 
 #include <algorithm>
 #include <cmath>
@@ -238,14 +241,16 @@ int pmsh::ranksOnThisMachine(const Communicator& comm)
     {
         return 1;
     }
-    MPI_Comm local;
-    MPI_Comm_split_type
-    (
-        MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, comm.rank(), MPI_INFO_NULL, &local
-    );
-    int n = 1;
-    MPI_Comm_size(local, &n);
-    MPI_Comm_free(&local);
+    // Ranks whose host name is this rank's
+    Foam::List<Foam::string> hosts(Foam::UPstream::nProcs());
+    hosts[Foam::UPstream::myProcNo()] = Foam::hostName();
+    Foam::Pstream::gatherList(hosts);
+    Foam::Pstream::scatterList(hosts);
+    int n = 0;
+    for (const Foam::string& host : hosts)
+    {
+        n += (host == hosts[Foam::UPstream::myProcNo()]);
+    }
     return n;
 }
 

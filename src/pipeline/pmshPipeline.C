@@ -1,7 +1,7 @@
 #include "pmshPipeline.H"
 #include "Info.H"
-#include "clock.H"
-#include "error.H"
+#include "stageClock.H"
+#include "pmshError.H"
 
 #include <algorithm>
 #include <filesystem>
@@ -62,34 +62,6 @@ std::vector<pmsh::polyPatchInfo> pmsh::physicalPatches
         patches.push_back(p);
     }
     return patches;
-}
-
-
-std::vector<pmsh::patchNameType> pmsh::patchNamesAndTypes
-(
-    const std::vector<polyPatchInfo>& polyPatches
-)
-{
-    std::vector<patchNameType> patches;
-    for (const polyPatchInfo& p : polyPatches)
-    {
-        patches.emplace_back(p.name, p.type);
-    }
-    return patches;
-}
-
-
-void pmsh::checkFieldTemplates
-(
-    const std::vector<fieldTemplate>& fields,
-    const std::vector<polyPatchInfo>& patches
-)
-{
-    const std::vector<patchNameType> physical = patchNamesAndTypes(patches);
-    for (const fieldTemplate& field : fields)
-    {
-        checkPatchCoverage(field, physical);
-    }
 }
 
 
@@ -174,18 +146,24 @@ pmsh::globalLabel pmsh::logVolumeMeshing
 }
 
 
+pmsh::meshSizes pmsh::meshSizesOf(const Communicator&, const PolyMesh& mesh)
+{
+    return {double(mesh.nFaces()), double(mesh.points.size())};
+}
+
+
 void pmsh::logWritten
 (
     const Communicator& comm,
     const std::string& caseDir,
-    const PolyMesh& mesh
+    const meshSizes& sizes
 )
 {
     Info()
         << "    written to " << caseDir
         << (comm.parallel() ? "/processor*" : "/constant/polyMesh") << '\n';
-    const minAvgMax faces = reduceMinAvgMax(comm, double(mesh.nFaces()));
-    const minAvgMax points = reduceMinAvgMax(comm, double(mesh.points.size()));
+    const minAvgMax faces = reduceMinAvgMax(comm, sizes.faces);
+    const minAvgMax points = reduceMinAvgMax(comm, sizes.points);
     Info() << std::fixed << std::setprecision(0);
     if (comm.parallel())
     {

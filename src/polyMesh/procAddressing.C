@@ -1,5 +1,5 @@
 #include "procAddressing.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <algorithm>
 #include <numeric>
@@ -127,19 +127,4 @@ pmsh::procAddressing pmsh::buildProcAddressing
         patchStart += comm.sum(std::int64_t(p.size));
     }
     return addr;
-}
-
-
-void pmsh::writeProcAddressing
-(
-    const std::string& polyMeshDir,
-    const procAddressing& addressing,
-    const foamFileFormat& format,
-    const std::string& location
-)
-{
-    writeLabelListFile(polyMeshDir + "/pointProcAddressing", addressing.point, format, location);
-    writeLabelListFile(polyMeshDir + "/faceProcAddressing", addressing.face, format, location);
-    writeLabelListFile(polyMeshDir + "/cellProcAddressing", addressing.cell, format, location);
-    writeLabelListFile(polyMeshDir + "/boundaryProcAddressing", addressing.boundary, format, location);
 }

@@ -1,5 +1,5 @@
 #include "tetsToPolyMesh.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <algorithm>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #include "barycentricId.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <algorithm>
 #include <ostream>

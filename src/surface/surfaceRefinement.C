@@ -1,6 +1,6 @@
 #include "surfaceRefinement.H"
 #include "Geometry.H"
-#include "error.H"
+#include "pmshError.H"
 #include "partitionSurface.H"
 
 #include <algorithm>

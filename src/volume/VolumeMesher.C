@@ -6,7 +6,7 @@
 #include "surfaceTopology.H"
 #include "netgenVolumeMesher.H"
 #include "hxtVolumeMesher.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #include "childProcess.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <cerrno>
 #include <csignal>

@@ -4,7 +4,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "hxtVolumeMesher.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <gmsh.h>
 

@@ -4,7 +4,7 @@
 
 #include "netgenVolumeMesher.H"
 #include "netgenInterface.H"
-#include "error.H"
+#include "pmshError.H"
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 

@@ -1,6 +1,6 @@
 #include "partitionVolume.H"
 #include "childProcess.H"
-#include "error.H"
+#include "pmshError.H"
 
 #include <cmath>
 #include <csignal>

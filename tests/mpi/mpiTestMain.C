@@ -1,5 +1,7 @@
 #include "mpiTestMain.H"
 
+#include "UPstream.H"
+
 namespace
 {
 const pmsh::Communicator* theWorld = nullptr;
@@ -13,9 +15,21 @@ const pmsh::Communicator& pmsh::test::world()
 
 int main(int argc, char** argv)
 {
-    pmsh::Communicator comm(argc, argv);
+    // OpenFOAM's Pstream starts MPI, as argList does for -parallel; on
+    // one rank the same tests run serially (MPI started for Netgen only,
+    // as pmshFoam does)
+    const char* worldSize = std::getenv("OMPI_COMM_WORLD_SIZE");
+    if (worldSize && std::atoi(worldSize) > 1)
+    {
+        Foam::UPstream::init(argc, argv, false);
+    }
+    else
+    {
+        Foam::UPstream::initNull();
+    }
+    const pmsh::Communicator comm;
     theWorld = &comm;
-    pmsh::setLogRank(comm.rank(), true);
+    pmsh::setLogRank(comm.rank(), comm.parallel());
     pmsh::setInfoSilent(true);
 
     ::testing::InitGoogleTest(&argc, argv);
@@ -31,5 +45,6 @@ int main(int argc, char** argv)
     {
         std::cout << "Some rank failed a test" << std::endl;
     }
-    return anyFailed ? 1 : 0;
+    Foam::UPstream::exit(anyFailed ? 1 : 0);
+    return 1;
 }

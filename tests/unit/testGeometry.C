@@ -1,0 +1,797 @@
+// Geometry: CSG (.geo) and STL loading, coarse meshes through Netgen, patch
+// names, projection onto surfaces and edges, and every STL input error.
+
+#include "testPaths.H"
+#include "Geometry.H"
+#include "csgGeometry.H"
+#include "stlGeometry.H"
+#include "stlReader.H"
+#include "testUtilities.H"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+
+using namespace pmsh;
+using namespace pmsh::test;
+
+namespace
+{
+
+const std::string dataDir = std::string(PMSH_TEST_DATA) + "/geometry/";
+
+
+//- Checks every coarse mesh must pass; returns the enclosed volume.
+double checkCoarseMesh(const CoarseMesh& m)
+{
+    EXPECT_GT(m.nCells(), 0);
+    EXPECT_FALSE(m.boundary.empty());
+
+    double tetVolume = 0;
+    for (const tetCell& t : m.tets)
+    {
+        const double v6 = tetVolume6(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
+        EXPECT_GT(v6, 0);
+        tetVolume += v6/6;
+    }
+
+    // Closed and consistently oriented: every directed edge once, with its
+    // reverse once
+    std::map<std::pair<label, label>, int> directed;
+    for (const auto& f : m.boundary)
+    {
+        EXPECT_GE(f.patch, 0);
+        EXPECT_LT(f.patch, label(m.patchNames.size()));
+        for (int k = 0; k < 3; ++k)
+        {
+            ++directed[{f.v[k], f.v[(k + 1) % 3]}];
+        }
+    }
+    for (const auto& d : directed)
+    {
+        EXPECT_EQ(d.second, 1);
+        EXPECT_EQ(directed.count({d.first.second, d.first.first}), 1u);
+    }
+
+    // Outward: the enclosed volume is positive and equals the tets'
+    double v6 = 0;
+    for (const auto& f : m.boundary)
+    {
+        v6 += dot(m.points[f.v[0]], cross(m.points[f.v[1]], m.points[f.v[2]]));
+    }
+    EXPECT_GT(v6, 0);
+    EXPECT_NEAR(v6/6, tetVolume, 1e-9*tetVolume);
+
+    // Every point used
+    std::vector<bool> used(m.points.size(), false);
+    for (const tetCell& t : m.tets)
+    {
+        for (label p : t) used[p] = true;
+    }
+    EXPECT_EQ(std::count(used.begin(), used.end(), false), 0);
+
+    return v6/6;
+}
+
+
+double radius(const point& p)
+{
+    return std::sqrt(magSqr(p));
+}
+
+
+double distanceToTriangle(const stlSurface& s, label t, const point& p)
+{
+    // Brute force: sample-free exact distance by projecting onto the plane
+    // and clamping through the three edges
+    const point& a = s.points[s.triangles[t][0]];
+    const point& b = s.points[s.triangles[t][1]];
+    const point& c = s.points[s.triangles[t][2]];
+    const vector n = cross(b - a, c - a);
+    const double nn = magSqr(n);
+    const point q = p - (dot(p - a, n)/nn)*n;
+    auto inside = [&](const point& x)
+    {
+        return dot(cross(b - a, x - a), n) >= 0
+            && dot(cross(c - b, x - b), n) >= 0
+            && dot(cross(a - c, x - c), n) >= 0;
+    };
+    if (inside(q))
+    {
+        return std::sqrt(magSqr(p - q));
+    }
+    auto seg = [&](const point& u, const point& v)
+    {
+        const double l2 = magSqr(v - u);
+        double tt = dot(p - u, v - u)/l2;
+        tt = std::min(1.0, std::max(0.0, tt));
+        return std::sqrt(magSqr(p - (u + tt*(v - u))));
+    };
+    return std::min({seg(a, b), seg(b, c), seg(c, a)});
+}
+
+
+double distanceToStl(const stlSurface& s, const point& p)
+{
+    double d = 1e300;
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        d = std::min(d, distanceToTriangle(s, t, p));
+    }
+    return d;
+}
+
+
+bool sameBits(const point& a, const point& b)
+{
+    return std::memcmp(a.data(), b.data(), sizeof(point)) == 0;
+}
+
+
+// A small closed box as ascii STL text, for the broken variants:
+// unit cube, 12 triangles, outward
+struct boxStl
+{
+    std::vector<point> p
+    {
+        {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+        {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}
+    };
+    std::vector<triFace> t
+    {
+        {0, 2, 1}, {0, 3, 2},   // z = 0
+        {4, 5, 6}, {4, 6, 7},   // z = 1
+        {0, 1, 5}, {0, 5, 4},   // y = 0
+        {3, 7, 6}, {3, 6, 2},   // y = 1
+        {0, 4, 7}, {0, 7, 3},   // x = 0
+        {1, 2, 6}, {1, 6, 5}    // x = 1
+    };
+
+    std::string ascii(const std::string& name = "box") const
+    {
+        std::ostringstream os;
+        os.precision(17);
+        os  << "solid " << name << "\n";
+        for (const triFace& f : t)
+        {
+            os  << " facet normal 0 0 0\n  outer loop\n";
+            for (label v : f)
+            {
+                os  << "   vertex " << p[v][0] << ' ' << p[v][1] << ' ' << p[v][2] << "\n";
+            }
+            os  << "  endloop\n endfacet\n";
+        }
+        os  << "endsolid " << name << "\n";
+        return os.str();
+    }
+
+    std::string binary(const std::string& header = "binary box") const
+    {
+        std::string s(80, ' ');
+        std::copy(header.begin(), header.end(), s.begin());
+        const std::uint32_t n = std::uint32_t(t.size());
+        s.append(reinterpret_cast<const char*>(&n), 4);
+        for (const triFace& f : t)
+        {
+            float rec[12] = {0, 0, 0};
+            for (int k = 0; k < 3; ++k)
+            {
+                for (int j = 0; j < 3; ++j)
+                {
+                    rec[3 + 3*k + j] = float(p[f[k]][j]);
+                }
+            }
+            s.append(reinterpret_cast<const char*>(rec), sizeof(rec));
+            s.append(2, '\0');
+        }
+        return s;
+    }
+};
+
+//- The unit cube, every side split n x n into 2 n^2 outward triangles, as
+//  ascii STL with two solids: "inlet" (the cells of side x = 0 whose
+//  centre lies in the square [lo, hi]^2) and "walls" (the rest).
+std::string cubeWithInlet(int n, double lo, double hi)
+{
+    std::vector<std::pair<bool, std::array<point, 3>>> tris;
+    auto side = [&](const point& o, const vector& du, const vector& dv, bool x0)
+    {
+        for (int i = 0; i < n; ++i)
+        {
+            for (int j = 0; j < n; ++j)
+            {
+                auto P = [&](int a, int b)
+                {
+                    return o + (double(a)/n)*du + (double(b)/n)*dv;
+                };
+                const point centre = o + (0.5/n)*((2*i + 1)*du + (2*j + 1)*dv);
+                const bool inlet = x0
+                    && centre[1] > lo && centre[1] < hi
+                    && centre[2] > lo && centre[2] < hi;
+                tris.push_back({inlet, {P(i, j), P(i + 1, j), P(i + 1, j + 1)}});
+                tris.push_back({inlet, {P(i, j), P(i + 1, j + 1), P(i, j + 1)}});
+            }
+        }
+    };
+    // du x dv outward
+    side({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, true);
+    side({1, 0, 0}, {0, 1, 0}, {0, 0, 1}, false);
+    side({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, false);
+    side({0, 1, 0}, {0, 0, 1}, {1, 0, 0}, false);
+    side({0, 0, 0}, {0, 1, 0}, {1, 0, 0}, false);
+    side({0, 0, 1}, {1, 0, 0}, {0, 1, 0}, false);
+
+    std::ostringstream os;
+    os.precision(17);
+    for (int solid = 0; solid < 2; ++solid)
+    {
+        const std::string name = solid ? "walls" : "inlet";
+        os  << "solid " << name << "\n";
+        for (const auto& t : tris)
+        {
+            if (t.first != (solid == 0)) continue;
+            os  << "facet normal 0 0 0\nouter loop\n";
+            for (const point& p : t.second)
+            {
+                os  << "vertex " << p[0] << ' ' << p[1] << ' ' << p[2] << "\n";
+            }
+            os  << "endloop\nendfacet\n";
+        }
+        os  << "endsolid " << name << "\n";
+    }
+    return os.str();
+}
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * * * CSG  * * * * * * * * * * * * * * * * * //
+
+TEST(csgGeometry, sphereCoarseMesh)
+{
+    auto g = Geometry::New(dataDir + "sphere.geo");
+    const CoarseMesh m = g->coarseMesh({0.5, 0.3});
+
+    const double v = checkCoarseMesh(m);
+    EXPECT_NEAR(v, 4.0/3.0*M_PI, 0.15*4.0/3.0*M_PI);
+
+    ASSERT_EQ(m.patchNames, std::vector<std::string>{"wall"});
+    EXPECT_EQ(g->patchNames(), m.patchNames);
+    for (const auto& f : m.boundary)
+    {
+        EXPECT_EQ(f.patch, 0);
+        EXPECT_EQ(f.surface, 0);
+        for (label p : f.v)
+        {
+            EXPECT_NEAR(radius(m.points[p]), 1.0, 1e-6);
+        }
+    }
+}
+
+
+TEST(csgGeometry, sphereProjectionIsExactAndPure)
+{
+    auto g = Geometry::New(dataDir + "sphere.geo");
+    std::mt19937 gen(1);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (int i = 0; i < 100; ++i)
+    {
+        point d{u(gen), u(gen), u(gen)};
+        d = (1.1/radius(d))*d;
+        const point q = g->projectToSurface(d, 0);
+        EXPECT_NEAR(radius(q), 1.0, 1e-12);
+        EXPECT_TRUE(sameBits(q, g->projectToSurface(d, 0)));
+        // Direction kept
+        EXPECT_NEAR(dot(q, d)/radius(d), 1.0, 1e-12);
+    }
+    EXPECT_FATAL(g->projectToSurface({1, 0, 0}, 7), "valid surfaces are 0..0");
+}
+
+
+TEST(csgGeometry, shaftPatchesAndEdgeProjection)
+{
+    auto g = Geometry::New(dataDir + "shaft.geo");
+    EXPECT_FATAL(g->patchNames(), "known once its coarse mesh is generated");
+
+    const CoarseMesh m = g->coarseMesh({0.4, 0.3});
+    checkCoarseMesh(m);
+
+    std::set<std::string> names(m.patchNames.begin(), m.patchNames.end());
+    EXPECT_EQ
+    (
+        names,
+        (std::set<std::string>{"inlet", "outlet", "shoulder", "shaftWall", "shoulderWall"})
+    );
+    EXPECT_EQ(g->patchNames(), m.patchNames);
+
+    // Each patch has faces, on the right place
+    std::map<std::string, int> nFaces;
+    for (const auto& f : m.boundary)
+    {
+        const std::string& name = m.patchNames[f.patch];
+        ++nFaces[name];
+        for (label p : f.v)
+        {
+            const point& x = m.points[p];
+            const double r = std::hypot(x[0], x[1]);
+            if (name == "inlet") EXPECT_NEAR(x[2], 0, 1e-9);
+            if (name == "outlet") EXPECT_NEAR(x[2], 3, 1e-9);
+            if (name == "shoulder") EXPECT_NEAR(x[2], 1.5, 1e-9);
+            if (name == "shaftWall") EXPECT_NEAR(r, 0.5, 1e-6);
+            if (name == "shoulderWall") EXPECT_NEAR(r, 1.0, 1e-6);
+        }
+    }
+    EXPECT_EQ(nFaces.size(), 5u);
+
+    // The shoulder plane faces the +z direction from the thin section's
+    // side: its outward normal is -z (Netgen gives it DomainIn 0: flipped)
+    for (const auto& f : m.boundary)
+    {
+        if (m.patchNames[f.patch] == "shoulder")
+        {
+            const vector n = cross
+            (
+                m.points[f.v[1]] - m.points[f.v[0]],
+                m.points[f.v[2]] - m.points[f.v[0]]
+            );
+            EXPECT_LT(n[2], 0);
+        }
+    }
+
+    // Coarse edges between faces of two surfaces: the midpoint projected
+    // onto the edge lies on both surfaces
+    std::map<std::pair<label, label>, std::vector<label>> edgeFaces;
+    for (std::size_t i = 0; i < m.boundary.size(); ++i)
+    {
+        const auto& f = m.boundary[i].v;
+        for (int k = 0; k < 3; ++k)
+        {
+            edgeFaces[{std::min(f[k], f[(k + 1) % 3]), std::max(f[k], f[(k + 1) % 3])}]
+                .push_back(label(i));
+        }
+    }
+    int nChecked = 0;
+    for (const auto& ef : edgeFaces)
+    {
+        ASSERT_EQ(ef.second.size(), 2u);
+        const label s1 = m.boundary[ef.second[0]].surface;
+        const label s2 = m.boundary[ef.second[1]].surface;
+        if (s1 == s2)
+        {
+            continue;
+        }
+        const point mid = midPoint(m.points[ef.first.first], m.points[ef.first.second]);
+        const point q = g->projectToEdge(mid, s1, s2);
+        EXPECT_TRUE(sameBits(q, g->projectToEdge(mid, s1, s2)));
+        EXPECT_TRUE(sameBits(q, g->projectToEdge(mid, s2, s1)));
+        EXPECT_LT(std::sqrt(magSqr(g->projectToSurface(q, s1) - q)), 1e-10);
+        EXPECT_LT(std::sqrt(magSqr(g->projectToSurface(q, s2) - q)), 1e-10);
+        EXPECT_LT(std::sqrt(magSqr(q - mid)), 0.1);
+        ++nChecked;
+    }
+    EXPECT_GT(nChecked, 20);
+}
+
+
+TEST(csgGeometry, bcNumbersWithoutNames)
+{
+    const tempDir dir("geometry");
+    const std::string f = dir.file
+    (
+        "cube.geo",
+        "algebraic3d\n"
+        "solid cube = orthobrick(0, 0, 0; 1, 1, 1) -bc=3;\n"
+        "tlo cube;\n"
+    );
+    auto g = Geometry::New(f);
+    const CoarseMesh m = g->coarseMesh({0.5, 0.3});
+    checkCoarseMesh(m);
+    EXPECT_EQ(m.patchNames, std::vector<std::string>{"patch3"});
+    std::set<label> surfaces;
+    for (const auto& b : m.boundary) surfaces.insert(b.surface);
+    EXPECT_EQ(surfaces.size(), 6u);
+}
+
+
+TEST(csgGeometry, errors)
+{
+    const tempDir dir("geometry");
+    EXPECT_FATAL(Geometry::New("/nonexistent/body.geo"), "Cannot open CSG geometry file \"/nonexistent/body.geo\"");
+
+    const std::string noKeyword = dir.file("a.geo", "solid ball = sphere(0, 0, 0; 1);\ntlo ball;\n");
+    EXPECT_FATAL(Geometry::New(noKeyword), "does not start with the keyword algebraic3d");
+
+    const std::string syntax = dir.file
+    (
+        "b.geo",
+        "algebraic3d\n# comment\nsolid ball = sphere(0, 0, 0; 1;\ntlo ball;\n"
+    );
+    const std::string m = errorOf([&]{ Geometry::New(syntax); });
+    EXPECT_NE(m.find("Cannot parse CSG geometry file \"" + syntax + "\""), std::string::npos) << m;
+    EXPECT_NE(m.find("line 3"), std::string::npos) << m;
+
+    const std::string flagOnPrimitive = dir.file
+    (
+        "b2.geo",
+        "algebraic3d\nsolid c = cylinder(0, 0, -1; 0, 0, 2; 1) and plane(0, 0, 0; 0, 0, -1) -bcname=inlet"
+        " and plane(0, 0, 1; 0, 0, 1);\ntlo c;\n"
+    );
+    EXPECT_FATAL(Geometry::New(flagOnPrimitive), "go at the end of a solid definition");
+
+    const std::string unknownPrimitive = dir.file
+    (
+        "c.geo", "algebraic3d\nsolid ball = sphear(0, 0, 0; 1);\ntlo ball;\n"
+    );
+    EXPECT_FATAL(Geometry::New(unknownPrimitive), "sphear");
+
+    const std::string noTlo = dir.file("d.geo", "algebraic3d\nsolid ball = sphere(0, 0, 0; 1);\n");
+    EXPECT_FATAL(Geometry::New(noTlo), "no top-level object");
+
+    const std::string unbounded = dir.file
+    (
+        "e.geo",
+        "algebraic3d\nsolid c = cylinder(0, 0, 0; 0, 0, 1; 0.5) and plane(0, 0, 0; 0, 0, -1);\ntlo c;\n"
+    );
+    EXPECT_FATAL(Geometry::New(unbounded), "is not bounded");
+
+    // A solid that touches a user-given bounding box is bounded
+    const std::string touching = dir.file
+    (
+        "f.geo",
+        "algebraic3d\nboundingbox(0, 0, 0; 1, 1, 1);\n"
+        "solid cube = orthobrick(0, 0, 0; 1, 1, 1);\ntlo cube;\n"
+    );
+    EXPECT_NO_THROW(Geometry::New(touching)->coarseMesh({0.5, 0.3}));
+
+    EXPECT_FATAL(Geometry::New(dir.file("body.step", "x")), ".geo");
+    EXPECT_FATAL(Geometry::New(dir.file("body.step", "x")), ".stl");
+    EXPECT_FATAL(Geometry::New(dir.file("body", "x")), "no extension");
+
+    // Extensions are case-insensitive
+    const std::string upper = dir.file("SPHERE.GEO", readFile(dataDir + "sphere.geo"));
+    EXPECT_NO_THROW(Geometry::New(upper));
+}
+
+
+// * * * * * * * * * * * * * * * * * STL  * * * * * * * * * * * * * * * * * //
+
+TEST(stlReader, asciiAndBinarySphereAreIdentical)
+{
+    const stlSurface a = readStl(dataDir + "sphere.stl");
+    const stlSurface b = readStl(dataDir + "sphereBinary.stl");
+    EXPECT_FALSE(a.binary);
+    EXPECT_TRUE(b.binary);
+    EXPECT_EQ(a.nTriangles(), 1280);
+    EXPECT_EQ(a.points.size(), 642u);
+    ASSERT_EQ(a.points.size(), b.points.size());
+    ASSERT_EQ(a.triangles, b.triangles);
+    for (std::size_t i = 0; i < a.points.size(); ++i)
+    {
+        EXPECT_TRUE(sameBits(a.points[i], b.points[i]));
+    }
+    EXPECT_EQ(a.solidNames, std::vector<std::string>{"sphere"});
+    EXPECT_EQ(b.solidNames, std::vector<std::string>{"sphereBinary"});
+    EXPECT_NO_THROW(checkStl(a, "sphere.stl"));
+    EXPECT_GT(enclosedVolume(a), 4.0);
+}
+
+
+TEST(stlReader, binaryHeaderStartingWithSolid)
+{
+    const tempDir dir("geometry");
+    boxStl box;
+    const std::string f = dir.file("cube.stl", box.binary("solid cube exported as binary"));
+    const stlSurface s = readStl(f);
+    EXPECT_TRUE(s.binary);
+    EXPECT_EQ(s.nTriangles(), 12);
+    EXPECT_EQ(s.points.size(), 8u);
+    EXPECT_EQ(s.solidNames, std::vector<std::string>{"cube"});
+}
+
+
+TEST(stlReader, multiSolidNames)
+{
+    const stlSurface s = readStl(dataDir + "box.stl");
+    EXPECT_EQ(s.solidNames, (std::vector<std::string>{"inlet", "walls"}));
+    EXPECT_NO_THROW(checkStl(s, "box.stl"));
+
+    // An unnamed solid takes the file's stem; a repeated name is one patch
+    const tempDir dir("geometry");
+    boxStl box;
+    std::string text = box.ascii("");
+    const std::string f = dir.file("myPart.stl", text);
+    EXPECT_EQ(readStl(f).solidNames, std::vector<std::string>{"myPart"});
+
+    // Two solids with the same name, and a name with spaces
+    std::string two = box.ascii("wall");
+    const std::string f2 = dir.file("two.stl", two + two);
+    const stlSurface s2 = readStl(f2);
+    EXPECT_EQ(s2.solidNames, std::vector<std::string>{"wall"});
+    const std::string f3 = dir.file("three.stl", box.ascii("my wall 1"));
+    EXPECT_EQ(readStl(f3).solidNames, std::vector<std::string>{"mywall1"});
+}
+
+
+TEST(stlReader, inputErrors)
+{
+    const tempDir dir("geometry");
+    boxStl box;
+
+    EXPECT_FATAL(readStl(dir.file("empty.stl", "")), "is empty");
+    EXPECT_FATAL(readStl(dir.file("noTriangles.stl", "solid x\nendsolid x\n")), "contains no triangles");
+    EXPECT_FATAL(readStl("/nonexistent/body.stl"), "Cannot open STL file \"/nonexistent/body.stl\"");
+
+    // Truncated binary: the header announces more triangles than there are
+    std::string bin = box.binary();
+    EXPECT_FATAL(readStl(dir.file("truncated.stl", bin.substr(0, bin.size() - 30))), "is truncated");
+    EXPECT_FATAL(readStl(dir.file("short.stl", bin.substr(0, 40))), "84-byte");
+
+    // Ascii syntax errors name the line
+    std::string text = box.ascii();
+    const std::size_t pos = text.find("vertex", text.find("vertex") + 1);
+    std::string bad = text;
+    bad.replace(pos, 6, "vertx");
+    EXPECT_FATAL(readStl(dir.file("syntax.stl", bad)), "line 5: expected 'vertex', found 'vertx'");
+    std::string badNumber = text;
+    badNumber.replace(text.find("vertex 0 0 0"), 12, "vertex 0 a 0");
+    EXPECT_FATAL(readStl(dir.file("number.stl", badNumber)), "expected a number, found 'a'");
+}
+
+
+TEST(stlReader, validationErrors)
+{
+    const tempDir dir("geometry");
+
+    auto check = [&](const boxStl& b)
+    {
+        const std::string f = dir.file("broken.stl", b.ascii());
+        checkStl(readStl(f), f);
+    };
+
+    {
+        boxStl b;
+        EXPECT_NO_THROW(check(b));
+    }
+    {
+        // A hole
+        boxStl b;
+        b.t.pop_back();
+        EXPECT_FATAL(check(b), "is not closed: 3 edge(s) are used by only one triangle, e.g. the edge (");
+    }
+    {
+        // A third triangle on an edge: an extra fin (closed, but not manifold)
+        boxStl b;
+        b.p.push_back({0.5, -0.5, -0.5});
+        b.t.push_back({0, 1, 8});
+        b.t.push_back({1, 0, 8});
+        EXPECT_FATAL(check(b), "is not manifold");
+    }
+    {
+        // One triangle flipped
+        boxStl b;
+        std::swap(b.t[3][1], b.t[3][2]);
+        EXPECT_FATAL(check(b), "is inconsistently oriented");
+    }
+    {
+        // All flipped: inward
+        boxStl b;
+        for (auto& f : b.t) std::swap(f[1], f[2]);
+        const std::string m = errorOf([&]{ check(b); });
+        EXPECT_NE(m.find("is oriented inward"), std::string::npos) << m;
+        EXPECT_NE(m.find("flip the normals"), std::string::npos) << m;
+    }
+    {
+        // A zero-area triangle (three collinear points on an edge)
+        boxStl b;
+        b.p.push_back({0.5, 0, 0});
+        b.t.push_back({0, 8, 1});
+        EXPECT_FATAL(check(b), "degenerate (zero-area)");
+    }
+    {
+        // A triangle whose vertices merge (repeated point)
+        boxStl b;
+        b.t.push_back({0, 0, 1});
+        EXPECT_FATAL(check(b), "degenerate (zero-area)");
+    }
+
+    // Through Geometry::New the message names the file
+    boxStl b;
+    b.t.pop_back();
+    const std::string f = dir.file("open.stl", b.ascii());
+    EXPECT_FATAL(Geometry::New(f), "STL file \"" + f + "\" is not closed");
+}
+
+
+TEST(stlGeometry, sphereAsciiAndBinaryGiveTheSameMesh)
+{
+    auto a = Geometry::New(dataDir + "sphere.stl");
+    auto b = Geometry::New(dataDir + "sphereBinary.stl");
+    const CoarseMesh ma = a->coarseMesh({0.5, 0.3});
+    const CoarseMesh mb = b->coarseMesh({0.5, 0.3});
+
+    EXPECT_EQ(ma.nPoints(), mb.nPoints());
+    EXPECT_EQ(ma.nCells(), mb.nCells());
+    EXPECT_EQ(ma.boundary.size(), mb.boundary.size());
+    EXPECT_EQ(ma.patchNames, std::vector<std::string>{"sphere"});
+    EXPECT_EQ(mb.patchNames, std::vector<std::string>{"sphereBinary"});
+
+    const double v = checkCoarseMesh(ma);
+    EXPECT_NEAR(v, 4.0/3.0*M_PI, 0.15*4.0/3.0*M_PI);
+
+    // One smooth region; boundary points on the STL
+    const stlGeometry& sg = dynamic_cast<const stlGeometry&>(*a);
+    EXPECT_EQ(sg.nRegions(), 1);
+    for (const auto& f : ma.boundary)
+    {
+        EXPECT_EQ(f.surface, 0);
+        EXPECT_EQ(f.patch, 0);
+        for (label p : f.v)
+        {
+            point q;
+            sg.nearestTriangle(ma.points[p], q);
+            EXPECT_LT(std::sqrt(magSqr(q - ma.points[p])), 1e-9);
+        }
+    }
+}
+
+
+TEST(stlGeometry, boxPatchesAndRegions)
+{
+    auto g = Geometry::New(dataDir + "box.stl");
+    const stlGeometry& sg = dynamic_cast<const stlGeometry&>(*g);
+    EXPECT_EQ(g->patchNames(), (std::vector<std::string>{"inlet", "walls"}));
+    EXPECT_EQ(sg.nRegions(), 6);        // the six sides
+    EXPECT_EQ(sg.featureEdges().size(), 12u*2u);  // 12 box edges, 2 segments each
+
+    const CoarseMesh m = g->coarseMesh({0.3, 0.3});
+    const double v = checkCoarseMesh(m);
+    EXPECT_NEAR(v, 2.0, 1e-9);
+    EXPECT_EQ(m.patchNames, (std::vector<std::string>{"inlet", "walls"}));
+
+    std::map<label, std::set<label>> patchSurfaces;
+    for (const auto& f : m.boundary)
+    {
+        patchSurfaces[f.patch].insert(f.surface);
+        for (label p : f.v)
+        {
+            if (f.patch == 0)
+            {
+                EXPECT_EQ(m.points[p][0], 0.0);
+            }
+        }
+        // All three points on the face's surface
+        for (label p : f.v)
+        {
+            const point q = g->projectToSurface(m.points[p], f.surface);
+            EXPECT_LT(std::sqrt(magSqr(q - m.points[p])), 1e-12);
+        }
+    }
+    EXPECT_EQ(patchSurfaces[0].size(), 1u);
+    EXPECT_EQ(patchSurfaces[1].size(), 5u);
+}
+
+
+TEST(stlGeometry, coplanarSolidsKeepTheirBoundary)
+{
+    // The inlet is flush with the wall around it: no angle marks the
+    // boundary between the two solids, only the change of solid.
+    // Mesh another STL with feature edges first: nglib keeps the edges of
+    // the last geometry in a global buffer that would spoil this one's
+    Geometry::New(dataDir + "box.stl")->coarseMesh({0.5, 0.3});
+    const tempDir dir("geometry");
+    const std::string f = dir.file("duct.stl", cubeWithInlet(4, 0.25, 0.75));
+    auto g = Geometry::New(f);
+    EXPECT_EQ(g->patchNames(), (std::vector<std::string>{"inlet", "walls"}));
+    const stlGeometry& sg = dynamic_cast<const stlGeometry&>(*g);
+    EXPECT_EQ(sg.nRegions(), 7);
+
+    const CoarseMesh m = g->coarseMesh({0.2, 0.3});
+    checkCoarseMesh(m);
+    double inletArea = 0;
+    for (const auto& f : m.boundary)
+    {
+        if (m.patchNames[f.patch] != "inlet") continue;
+        for (label p : f.v)
+        {
+            const point& x = m.points[p];
+            EXPECT_EQ(x[0], 0.0);
+            EXPECT_GE(x[1], 0.25 - 1e-12);
+            EXPECT_LE(x[1], 0.75 + 1e-12);
+            EXPECT_GE(x[2], 0.25 - 1e-12);
+            EXPECT_LE(x[2], 0.75 + 1e-12);
+        }
+        inletArea += 0.5*std::sqrt(magSqr(cross
+        (
+            m.points[f.v[1]] - m.points[f.v[0]], m.points[f.v[2]] - m.points[f.v[0]]
+        )));
+    }
+    EXPECT_NEAR(inletArea, 0.25, 1e-9);
+}
+
+
+TEST(stlGeometry, projection)
+{
+    auto g = Geometry::New(dataDir + "sphere.stl");
+    const stlGeometry& sg = dynamic_cast<const stlGeometry&>(*g);
+    std::mt19937 gen(2);
+    std::uniform_real_distribution<double> u(-1.3, 1.3);
+    for (int i = 0; i < 200; ++i)
+    {
+        const point p{u(gen), u(gen), u(gen)};
+        const point q = g->projectToSurface(p, 0);
+        EXPECT_TRUE(sameBits(q, g->projectToSurface(p, 0)));
+        // On the triangles, and nearest
+        EXPECT_LT(distanceToStl(sg.surface(), q), 1e-12);
+        EXPECT_NEAR(std::sqrt(magSqr(p - q)), distanceToStl(sg.surface(), p), 1e-12);
+    }
+
+    // Box: the edge between two sides is a box edge
+    auto b = Geometry::New(dataDir + "box.stl");
+    const stlGeometry& bg = dynamic_cast<const stlGeometry&>(*b);
+    const auto& region = bg.triangleRegion();
+    const stlSurface& s = bg.surface();
+    // Region of the side x = 0 (inlet) and of the side y = 0
+    label rx0 = -1, ry0 = -1;
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        const auto& f = s.triangles[t];
+        if (s.points[f[0]][0] == 0 && s.points[f[1]][0] == 0 && s.points[f[2]][0] == 0) rx0 = region[t];
+        if (s.points[f[0]][1] == 0 && s.points[f[1]][1] == 0 && s.points[f[2]][1] == 0) ry0 = region[t];
+    }
+    ASSERT_GE(rx0, 0);
+    ASSERT_GE(ry0, 0);
+    ASSERT_NE(rx0, ry0);
+    for (int i = 0; i < 50; ++i)
+    {
+        const point p{0.1*u(gen), 0.1*u(gen), 0.5 + 0.3*u(gen)};
+        const point q = b->projectToEdge(p, rx0, ry0);
+        EXPECT_EQ(q[0], 0.0);
+        EXPECT_EQ(q[1], 0.0);
+        EXPECT_NEAR(q[2], std::min(1.0, std::max(0.0, p[2])), 1e-15);
+        EXPECT_TRUE(sameBits(q, b->projectToEdge(p, ry0, rx0)));
+    }
+    // Opposite sides share no edge: the surface of the first
+    label rx1 = -1;
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        const auto& f = s.triangles[t];
+        if (s.points[f[0]][0] == 2 && s.points[f[1]][0] == 2 && s.points[f[2]][0] == 2) rx1 = region[t];
+    }
+    ASSERT_GE(rx1, 0);
+    const point q = b->projectToEdge({1, 0.5, 0.5}, rx0, rx1);
+    EXPECT_EQ(q[0], 0.0);
+    EXPECT_FATAL(b->projectToSurface({0, 0, 0}, 6), "valid surfaces are 0..5");
+}
+
+
+TEST(stlGeometry, projectionSpeed)
+{
+    auto g = Geometry::New(dataDir + "sphere.stl");
+    std::mt19937 gen(3);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const int n = 200000;
+    std::vector<point> pts(n);
+    for (auto& p : pts)
+    {
+        p = {u(gen), u(gen), u(gen)};
+        p = ((1 + 0.01*u(gen))/radius(p))*p;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    double sum = 0;
+    for (const auto& p : pts)
+    {
+        sum += g->projectToSurface(p, 0)[0];
+    }
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cout << "STL projection: " << n/s << " points/s (1280 triangles)" << std::endl;
+    EXPECT_LT(s, 5.0);
+    EXPECT_TRUE(std::isfinite(sum));
+}

@@ -1,0 +1,500 @@
+/*---------------------------------------------------------------------------*\
+  Tests of system/pmshDict validation (src/io/meshSettings): the settings
+  read from an OpenFOAM Foam::dictionary, and the FatalIOError every
+  problem raises (message naming the entry and what is valid, file and
+  line of the entry).
+\*---------------------------------------------------------------------------*/
+
+#include "meshSettings.H"
+#include "VolumeMesher.H"
+#include "testUtilities.H"
+
+#include "error.H"
+#include "IFstream.H"
+#include "IStringStream.H"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+using namespace pmsh;
+using namespace pmsh::test;
+namespace fs = std::filesystem;
+
+namespace
+{
+
+//- The Foam::error f() raises: its message, and for a FatalIOError the
+//  location as OpenFOAM prints it ("file: F at line N."); "" if none.
+std::string foamErrorOf(const std::function<void()>& f)
+{
+    try
+    {
+        f();
+    }
+    catch (const Foam::IOerror& e)
+    {
+        return
+            e.message() + "\nfile: " + e.ioFileName()
+          + " at line " + std::to_string(e.ioStartLineNumber()) + ".";
+    }
+    catch (const Foam::error& e)
+    {
+        return e.message();
+    }
+    return "";
+}
+
+
+//- A case directory with geometry files; removed at the end of the test.
+//  Dictionaries are read from strings named and numbered as the file
+//  system/pmshDict would be: the first line is line 1.
+class meshSettingsTest
+:
+    public ::testing::Test
+{
+protected:
+
+    const tempDir tmp{"case"};
+    const std::string dir = tmp.path();
+    const std::string dictName = dir + "/system/pmshDict";
+    const std::string stl = fs::absolute(dir + "/constant/geometry/body.stl").lexically_normal().string();
+
+    void SetUp() override
+    {
+        Foam::FatalIOError.throwExceptions();
+        Foam::FatalError.throwExceptions();
+        writeFile(stl, "solid body\nendsolid body\n");
+        writeFile(dir + "/constant/geometry/Shape.GEO", "algebraic3d\n");
+    }
+
+    //- The settings of a dictionary with these entries, named as the
+    //  application's IOdictionary would be.
+    meshSettings read(const std::string& entries) const
+    {
+        Foam::IStringStream is
+        (
+            entries, Foam::IOstream::ASCII, Foam::IOstream::currentVersion,
+            dictName
+        );
+        is.lineNumber(1);   // as in a file (IFstream): the first line is 1
+        return readMeshSettings(Foam::dictionary(is), dir);
+    }
+
+    //- The error of reading a dictionary with these entries.
+    std::string errorFor(const std::string& entries) const
+    {
+        return foamErrorOf([&]{ read(entries); });
+    }
+
+    //- Two lines: the entries that are required.
+    static std::string minimal()
+    {
+        return "geometry \"constant/geometry/body.stl\";\nmaxCellSize 0.1;\n";
+    }
+
+    //- The required entries, with geometry naming this file.
+    static std::string withGeometry(const std::string& file)
+    {
+        return "geometry \"" + file + "\";\nmaxCellSize 0.1;\n";
+    }
+};
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * * Settings  * * * * * * * * * * * * * * * //
+
+TEST_F(meshSettingsTest, readsEveryEntry)
+{
+    const meshSettings s = read
+    (
+        "geometry          \"constant/geometry/Shape.GEO\";\n"
+        "maxCellSize       0.25;\n"
+        "grading           0.5;\n"
+        "refinementLevels  3;\n"
+        "volumeMesher      netgen;\n"
+        "optimisationSteps 7;\n"
+        "volumeMesherThreads 2;\n"
+        "patches\n{\n    inlet { type patch; }\n}\n"
+    );
+    EXPECT_EQ(s.dictFile, dictName);
+    EXPECT_EQ(s.geometryFile, fs::absolute(dir + "/constant/geometry/Shape.GEO").lexically_normal().string());
+    EXPECT_DOUBLE_EQ(s.maxCellSize, 0.25);
+    EXPECT_DOUBLE_EQ(s.grading, 0.5);
+    EXPECT_EQ(s.refinementLevels, 3);
+    EXPECT_EQ(s.refinementLevelsLine, 4);
+    EXPECT_EQ(s.volumeMesher, "netgen");
+    EXPECT_EQ(s.optimisationSteps, 7);
+    EXPECT_EQ(s.volumeMesherThreads, 2);
+    EXPECT_EQ(s.patchType("inlet"), "patch");
+}
+
+TEST_F(meshSettingsTest, optionalEntriesHaveTheirDefaults)
+{
+    const meshSettings s = read(minimal());
+    EXPECT_EQ(s.geometryFile, stl);
+    EXPECT_DOUBLE_EQ(s.maxCellSize, 0.1);
+    EXPECT_DOUBLE_EQ(s.grading, 0.3);
+    EXPECT_EQ(s.refinementLevels, 1);
+    EXPECT_EQ(s.refinementLevelsLine, 0);
+    EXPECT_EQ(s.volumeMesher, "netgen");
+    EXPECT_EQ(s.optimisationSteps, 3);
+    EXPECT_EQ(s.volumeMesherThreads, 1);
+    EXPECT_EQ(s.patches.size(), 0);
+    EXPECT_EQ(s.patchType("anything"), "wall");
+}
+
+TEST_F(meshSettingsTest, integersWrittenAsIntegersAreAcceptedForNumbers)
+{
+    const meshSettings s = read(withGeometry("constant/geometry/body.stl") + "grading 1;\n");
+    EXPECT_DOUBLE_EQ(s.grading, 1.0);
+    EXPECT_DOUBLE_EQ(read("geometry \"constant/geometry/body.stl\";\nmaxCellSize 2;\n").maxCellSize, 2.0);
+}
+
+TEST_F(meshSettingsTest, headerAndMacrosWorkAsInAnyOpenFOAMDictionary)
+{
+    // FoamFile is not an unknown entry; $macros are expanded on reading
+    const meshSettings s = read
+    (
+        "FoamFile\n{\n    version 2.0;\n    format ascii;\n"
+        "    class dictionary;\n    object pmshDict;\n}\n"
+        + minimal() + "grading $maxCellSize;\n"
+    );
+    EXPECT_DOUBLE_EQ(s.grading, 0.1);
+}
+
+
+// * * * * * * * * * * * * * * * * Errors  * * * * * * * * * * * * * * * * //
+
+TEST_F(meshSettingsTest, errorsAreFatalIOErrorsAtTheEntryLine)
+{
+    try
+    {
+        read(minimal() + "grading 1.7;\n");
+        FAIL() << "no FatalIOError for grading 1.7";
+    }
+    catch (const Foam::IOerror& e)
+    {
+        EXPECT_EQ
+        (
+            std::string(e.message()),
+            "Entry 'grading' is 1.7\n"
+            "Valid values are numbers 0 <= grading <= 1"
+            " (0 uniform .. 1 aggressive)"
+        );
+        EXPECT_EQ(std::string(e.ioFileName()), dictName);
+        EXPECT_EQ(e.ioStartLineNumber(), 3);
+    }
+}
+
+TEST_F(meshSettingsTest, errorsGiveTheLineInTheDictionaryFile)
+{
+    // Read from the file as the application's IOdictionary is
+    writeFile
+    (
+        dictName,
+        "FoamFile\n{\n    version 2.0;\n    format ascii;\n"
+        "    class dictionary;\n    object pmshDict;\n}\n"
+      + minimal() + "\n// comment\ngrading 2;\n"     // line 12
+    );
+    Foam::IFstream is(dictName);
+    const std::string err =
+        foamErrorOf([&]{ readMeshSettings(Foam::dictionary(is), dir); });
+    EXPECT_HAS(err, "Entry 'grading' is 2\n");
+    EXPECT_HAS(err, "file: " + dictName + " at line 12.");
+}
+
+TEST_F(meshSettingsTest, maxCellSizeMustBeAPositiveNumber)
+{
+    std::string err = errorFor("geometry \"constant/geometry/body.stl\";\n");
+    EXPECT_HAS(err, "Entry 'maxCellSize' not found");
+    EXPECT_HAS(err, "maxCellSize must be a number > 0");
+    EXPECT_HAS(err, dictName);
+
+    for (const char* bad : {"0", "-1", "small", "(1 2)", "1 2", "{ a 1; }"})
+    {
+        err = errorFor
+        (
+            "geometry \"constant/geometry/body.stl\";\nmaxCellSize "
+          + std::string(bad) + ";\n"
+        );
+        EXPECT_HAS(err, "Entry 'maxCellSize' is ");
+        EXPECT_HAS(err, "maxCellSize must be a number > 0");
+        EXPECT_HAS(err, "at line 2.");
+    }
+}
+
+TEST_F(meshSettingsTest, gradingMustBeANumberFromZeroToOne)
+{
+    for (const char* bad : {"-0.1", "1.0001", "steep", "\"0.5\""})
+    {
+        const std::string err = errorFor(minimal() + "grading " + bad + ";\n");
+        EXPECT_HAS(err, "Entry 'grading' is ");
+        EXPECT_HAS(err, "Valid values are numbers 0 <= grading <= 1");
+        EXPECT_HAS(err, "at line 3.");
+    }
+    EXPECT_DOUBLE_EQ(read(minimal() + "grading 0;\n").grading, 0.0);
+}
+
+TEST_F(meshSettingsTest, integerEntriesMustBeIntegersInRange)
+{
+    for (const char* bad : {"11", "-1", "2.5", "two"})
+    {
+        const std::string err = errorFor(minimal() + "refinementLevels " + bad + ";\n");
+        EXPECT_HAS(err, "Entry 'refinementLevels' is " + std::string(bad));
+        EXPECT_HAS(err, "Valid values are integers 0 <= refinementLevels <= 10");
+        EXPECT_HAS(err, "at line 3.");
+    }
+    // A real number in range is still no integer (OpenFOAM writes 1e1 as 10)
+    EXPECT_HAS
+    (
+        errorFor(minimal() + "refinementLevels 1e1;\n"),
+        "Entry 'refinementLevels' is 10 (not an integer)"
+    );
+    for (const char* bad : {"101", "-3", "1.5"})
+    {
+        const std::string err = errorFor(minimal() + "optimisationSteps " + bad + ";\n");
+        EXPECT_HAS(err, "Entry 'optimisationSteps' is " + std::string(bad));
+        EXPECT_HAS(err, "Valid values are integers 0 <= optimisationSteps <= 100");
+    }
+    for (const char* bad : {"0", "257", "1.5"})
+    {
+        const std::string err = errorFor(minimal() + "volumeMesherThreads " + bad + ";\n");
+        EXPECT_HAS(err, "Entry 'volumeMesherThreads' is " + std::string(bad));
+        EXPECT_HAS(err, "Valid values are integers 1 <= volumeMesherThreads <= 256");
+    }
+    // The bounds themselves are valid
+    const meshSettings s = read
+    (
+        minimal()
+      + "refinementLevels 10;\noptimisationSteps 0;\nvolumeMesherThreads 256;\n"
+    );
+    EXPECT_EQ(s.refinementLevels, 10);
+    EXPECT_EQ(s.optimisationSteps, 0);
+    EXPECT_EQ(s.volumeMesherThreads, 256);
+}
+
+TEST_F(meshSettingsTest, volumeMesherMustBeAKnownBackend)
+{
+    const std::string err = errorFor(minimal() + "volumeMesher tetgen;\n");
+    EXPECT_HAS(err, "Entry 'volumeMesher' is tetgen");
+    EXPECT_HAS(err, "Valid values are: ");
+    EXPECT_HAS(err, "at line 3.");
+    ASSERT_FALSE(VolumeMesher::names().empty());
+    for (const std::string& name : VolumeMesher::names())
+    {
+        EXPECT_HAS(err, name);
+        EXPECT_EQ(read(minimal() + "volumeMesher " + name + ";\n").volumeMesher, name);
+    }
+}
+
+TEST_F(meshSettingsTest, unknownEntryIsAnErrorWithASuggestion)
+{
+    std::string err = errorFor(minimal() + "gradng 0.3;\n");
+    EXPECT_HAS(err, "Unknown entry 'gradng'. Did you mean 'grading'?");
+    EXPECT_HAS(err, "at line 3.");
+    EXPECT_HAS
+    (
+        err,
+        "Valid entries are: geometry, maxCellSize, grading, refinementLevels,"
+        " volumeMesher, optimisationSteps, volumeMesherThreads, patches"
+    );
+
+    // Nothing close: no guess, still the list
+    err = errorFor(minimal() + "colour blue;\n");
+    EXPECT_HAS(err, "Unknown entry 'colour'.");
+    EXPECT_EQ(err.find("Did you mean"), std::string::npos) << err;
+    EXPECT_HAS(err, "Valid entries are: geometry");
+
+    // Checked before the required entries: a typo is not reported as missing
+    EXPECT_HAS(errorFor("geometry \"constant/geometry/body.stl\";\nmaxCellSise 1;\n"), "Did you mean 'maxCellSize'?");
+
+    // A regex key at top level is not a setting either
+    EXPECT_HAS(errorFor(minimal() + "\"grading\" 0.3;\n"), "Unknown entry 'grading'");
+}
+
+TEST_F(meshSettingsTest, labelSizeIsGoneLabelsFollowTheOpenFOAMBuild)
+{
+    for (const char* value : {"32", "64"})
+    {
+        const std::string err = errorFor(minimal() + "labelSize " + value + ";\n");
+        EXPECT_HAS(err, "Entry 'labelSize' is no longer supported");
+        EXPECT_HAS(err, "labels follow the OpenFOAM build (WM_LABEL_SIZE");
+        EXPECT_HAS(err, std::to_string(8*sizeof(Foam::label)) + "-bit labels");
+        EXPECT_HAS(err, "at line 3.");
+    }
+    for (const std::string& e : meshSettingsEntries())
+    {
+        EXPECT_NE(e, "labelSize");
+    }
+}
+
+TEST_F(meshSettingsTest, patchesAreValidated)
+{
+    std::string err = errorFor(minimal() + "patches wall;\n");
+    EXPECT_HAS(err, "Entry 'patches' is wall");
+    EXPECT_HAS(err, "sub-dictionary");
+
+    err = errorFor(minimal() + "patches\n{\n    inlet { type inflow; }\n}\n");
+    EXPECT_HAS(err, "Entry 'type' is inflow");
+    EXPECT_HAS(err, "Valid patch types are: patch, wall, symmetry, symmetryPlane");
+    EXPECT_HAS(err, dictName + " at line 5.");
+
+    err = errorFor(minimal() + "patches\n{\n    inlet patch;\n}\n");
+    EXPECT_HAS(err, "Entry 'inlet' is patch");
+    EXPECT_HAS(err, "{ type T; }");
+    EXPECT_HAS(err, "at line 5.");
+
+    err = errorFor(minimal() + "patches\n{\n    inlet { }\n}\n");
+    EXPECT_HAS(err, "Entry 'type' not found in patch 'inlet'");
+    EXPECT_HAS(err, "Valid patch types are");
+
+    err = errorFor(minimal() + "patches\n{\n    inlet { type patch; tpye wall; }\n}\n");
+    EXPECT_HAS(err, "Unknown entry 'tpye' in patch 'inlet'");
+    EXPECT_HAS(err, "The only valid entry of a patch is 'type'");
+    EXPECT_HAS(err, "at line 5.");
+
+    for (const std::string& type : meshSettingsPatchTypes())
+    {
+        EXPECT_EQ(read(minimal() + "patches { p { type " + type + "; } }\n").patchType("p"), type);
+    }
+}
+
+TEST_F(meshSettingsTest, patchTypeUsesExactNameThenLastMatchingRegex)
+{
+    const meshSettings s = read
+    (
+        minimal()
+      + "patches\n{\n"
+        "    inlet       { type patch; }\n"
+        "    \".*\"        { type symmetryPlane; }\n"
+        "    \"in.*\"      { type symmetry; }\n"
+        "    \"(inlet|outlet)\" { type wall; }\n"
+        "}\n"
+    );
+    // The exact name wins over regexes written after it
+    EXPECT_EQ(s.patchType("inlet"), "patch");
+    // The last matching regex wins
+    EXPECT_EQ(s.patchType("outlet"), "wall");
+    EXPECT_EQ(s.patchType("inside"), "symmetry");
+    EXPECT_EQ(s.patchType("top"), "symmetryPlane");
+    // A regex matches the whole name
+    EXPECT_EQ(read(minimal() + "patches { \"in\" { type patch; } }\n").patchType("inlet"), "wall");
+
+    // A copy (as the application keeps it) still matches
+    const meshSettings copy = s;
+    EXPECT_EQ(copy.patchType("inside"), "symmetry");
+    EXPECT_EQ(copy.patchType("inlet"), "patch");
+}
+
+
+// * * * * * * * * * * * * * * * * Geometry  * * * * * * * * * * * * * * * //
+
+TEST_F(meshSettingsTest, geometryIsRelativeToTheCaseUnlessAbsolute)
+{
+    EXPECT_EQ(read(withGeometry("constant/geometry/body.stl")).geometryFile, stl);
+    EXPECT_EQ(read(withGeometry("./constant/../constant/geometry/body.stl")).geometryFile, stl);
+    EXPECT_EQ(read(withGeometry("<case>/constant/geometry/body.stl")).geometryFile, stl);
+    EXPECT_EQ(read(withGeometry("$FOAM_CASE/constant/geometry/body.stl")).geometryFile, stl);
+
+    const tempDir elsewhere{"geometry"};
+    const std::string other = elsewhere.file("other.stl", "solid x\nendsolid x\n");
+    EXPECT_EQ(read(withGeometry(other)).geometryFile, fs::absolute(other).lexically_normal().string());
+    EXPECT_TRUE(fs::path(read(minimal()).geometryFile).is_absolute());
+}
+
+TEST_F(meshSettingsTest, missingGeometryEntryNamesTheValidFiles)
+{
+    const std::string err = errorFor("maxCellSize 0.1;\n");
+    EXPECT_HAS(err, "Entry 'geometry' not found");
+    EXPECT_HAS(err, "geometry \"constant/geometry/body.stl\";");
+    EXPECT_HAS(err, ".geo (Netgen CSG), .stl (ascii or binary STL)");
+    EXPECT_HAS(err, dictName);
+}
+
+TEST_F(meshSettingsTest, missingGeometryFileNamesThePathAndTheCase)
+{
+    const std::string err = errorFor(withGeometry("constant/geometry/missing.stl"));
+    EXPECT_HAS(err, "Entry 'geometry' is \"constant/geometry/missing.stl\"");
+    EXPECT_HAS(err, "\"" + dir + "/constant/geometry/missing.stl\" does not exist");
+    EXPECT_HAS(err, "relative to the case directory \"" + dir + "\"");
+    EXPECT_HAS(err, "at line 1.");
+}
+
+TEST_F(meshSettingsTest, geometryMustHaveAGeoOrStlExtension)
+{
+    writeFile(dir + "/constant/geometry/body.obj", "v 0 0 0\n");
+    std::string err = errorFor(withGeometry("constant/geometry/body.obj"));
+    EXPECT_HAS(err, "the file extension '.obj' is not supported");
+    EXPECT_HAS(err, "Valid geometry file extensions are: .geo (Netgen CSG), .stl");
+    EXPECT_HAS(err, "at line 1.");
+
+    writeFile(dir + "/constant/geometry/body", "solid x\nendsolid x\n");
+    err = errorFor(withGeometry("constant/geometry/body"));
+    EXPECT_HAS(err, "the file name has no extension");
+    EXPECT_HAS(err, "Valid geometry file extensions are");
+}
+
+TEST_F(meshSettingsTest, geometryMustBeAQuotedFileName)
+{
+    for (const char* bad : {"constant/geometry/body.stl", "(a b)", "1"})
+    {
+        const std::string err = errorFor("geometry " + std::string(bad) + ";\nmaxCellSize 0.1;\n");
+        EXPECT_HAS(err, "Entry 'geometry' is ");
+        EXPECT_HAS(err, "geometry must be a file name in quotes");
+        EXPECT_HAS(err, "at line 1.");
+    }
+}
+
+TEST_F(meshSettingsTest, geometryMustBeANonEmptyRegularFile)
+{
+    fs::create_directories(dir + "/constant/dir.stl");
+    std::string err = errorFor(withGeometry("constant/dir.stl"));
+    EXPECT_HAS(err, "Entry 'geometry'");
+    EXPECT_HAS(err, "is not a regular file");
+
+    writeFile(dir + "/constant/geometry/empty.stl", "");
+    err = errorFor(withGeometry("constant/geometry/empty.stl"));
+    EXPECT_HAS(err, "Entry 'geometry'");
+    EXPECT_HAS(err, "is empty");
+}
+
+TEST_F(meshSettingsTest, unreadableGeometryIsAnError)
+{
+    fs::permissions(stl, fs::perms::none);
+
+    // Root reads any file: check as an unprivileged user in a child process
+    auto check = [&]
+    {
+        const std::string err = errorFor(minimal());
+        return err.find("cannot be read (check its permissions)") != std::string::npos
+            && err.find("Entry 'geometry'") != std::string::npos;
+    };
+    bool ok = false;
+    if (::geteuid() == 0)
+    {
+        // mkdtemp made the case private to root: let the user in
+        fs::permissions(dir, fs::perms::others_read | fs::perms::others_exec, fs::perm_options::add);
+        const pid_t child = ::fork();
+        ASSERT_GE(child, 0);
+        if (child == 0)
+        {
+            const bool dropped = ::setgid(65534) == 0 && ::setuid(65534) == 0;
+            std::_Exit(dropped && check() ? 0 : 1);
+        }
+        int status = 0;
+        ::waitpid(child, &status, 0);
+        ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    }
+    else
+    {
+        ok = check();
+    }
+    fs::permissions(stl, fs::perms::owner_read | fs::perms::owner_write);
+    EXPECT_TRUE(ok) << "no 'cannot be read' error naming Entry 'geometry'";
+}

@@ -1,0 +1,652 @@
+// Stage 2: the partition by OpenFOAM's decompositionMethod (the methods of
+// decomposeParDict), and its repair into parts with closed, manifold
+// surfaces, which the volume mesher needs.
+
+#include "partitionCoarseMesh.H"
+#include "partitionSurface.H"
+#include "Geometry.H"
+#include "cubeMesh.H"
+#include "surfaceChecks.H"
+#include "testPaths.H"
+#include "pmshError.H"
+#include "Info.H"
+
+// OpenFOAM
+#include "argList.H"
+#include "dictionary.H"
+#include "fileName.H"
+#include "IStringStream.H"
+#include "messageStream.H"
+#include "UPstream.H"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <set>
+#include <string>
+#include <unistd.h>
+
+using namespace pmsh;
+
+namespace
+{
+
+Foam::dictionary dictOf(const std::string& text)
+{
+    return Foam::dictionary(Foam::IStringStream(text)());
+}
+
+
+bool contains(const std::string& text, const std::string& part)
+{
+    return text.find(part) != std::string::npos;
+}
+
+
+// Every part in [0, nParts), non-empty, with a closed manifold surface
+void expectGoodPartition
+(
+    const CoarseMesh& m,
+    const std::vector<label>& part,
+    label nParts,
+    const std::string& what
+)
+{
+    ASSERT_EQ(part.size(), m.tets.size()) << what;
+    std::vector<int> size(nParts, 0);
+    for (label p : part)
+    {
+        ASSERT_GE(p, 0) << what;
+        ASSERT_LT(p, nParts) << what;
+        ++size[p];
+    }
+    for (label p = 0; p < nParts; ++p)
+    {
+        EXPECT_GT(size[p], 0) << what << ": part " << p;
+        EXPECT_TRUE(test::closedManifold(partitionSurface(m, part, p).faces))
+            << what << ": part " << p;
+    }
+    EXPECT_EQ(countNonManifoldParts(m, part), 0) << what;
+}
+
+
+// Quiet OpenFOAM's Info ("Selecting decompositionMethod ...") in the tests
+// of this file
+class decomposition : public ::testing::Test
+{
+    int infoLevel_ = Foam::messageStream::level;
+protected:
+    void SetUp() override
+    {
+        Foam::messageStream::level = 0;
+    }
+    void TearDown() override
+    {
+        Foam::messageStream::level = infoLevel_;
+    }
+};
+
+
+// The tests of the repair (and of the default method): quiet as well
+class partition : public decomposition {};
+
+
+// A scratch directory, removed with its files at the end of the test
+struct scratchDir
+{
+    std::string path;
+    scratchDir()
+    {
+        char tmpl[] = "/tmp/pmshTestPartitionXXXXXX";
+        path = mkdtemp(tmpl);
+    }
+    ~scratchDir()
+    {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    std::string write(const std::string& name, const std::string& text) const
+    {
+        const std::string file = path + "/" + name;
+        std::ofstream(file) << text;
+        return file;
+    }
+};
+
+const char* foamHeader =
+    "FoamFile\n{\n    version 2.0;\n    format ascii;\n"
+    "    class dictionary;\n    object decomposeParDict;\n}\n";
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * * Methods  * * * * * * * * * * * * * * * * //
+
+TEST_F(decomposition, metisGivesNonEmptyClosedManifoldParts)
+{
+    const CoarseMesh m = test::cubeMesh(6);
+    const Foam::dictionary dict = dictOf("method metis;");
+    for (label nParts : {2, 3, 4, 7, 16})
+    {
+        expectGoodPartition(m, partitionCells(m, nParts, dict), nParts,
+            "metis, " + std::to_string(nParts) + " parts");
+    }
+}
+
+
+TEST_F(decomposition, metisIsTheDefault)
+{
+    const CoarseMesh m = test::cubeMesh(5);
+    EXPECT_EQ(partitionCells(m, 4), partitionCells(m, 4, dictOf("method metis;")));
+    EXPECT_EQ
+    (
+        Foam::word(defaultDecompositionDict().get<Foam::word>("method")),
+        Foam::word("metis")
+    );
+}
+
+
+TEST_F(decomposition, metisIsTheSameOnEveryCall)
+{
+    const CoarseMesh m = test::cubeMesh(5);
+    const Foam::dictionary dict = dictOf("method metis;");
+    const std::vector<label> first = partitionCells(m, 4, dict);
+    for (int i = 0; i < 3; ++i)
+    {
+        EXPECT_EQ(partitionCells(m, 4, dict), first);
+    }
+}
+
+
+TEST_F(decomposition, metisCoeffsAreUsed)
+{
+    const CoarseMesh m = test::cubeMesh(6);
+    const std::vector<label> kway =
+        partitionCells(m, 5, dictOf("method metis; metisCoeffs { method k-way; }"));
+    expectGoodPartition(m, kway, 5, "metis k-way");
+    EXPECT_EQ
+    (
+        kway,
+        partitionCells(m, 5, dictOf("method metis; metisCoeffs { method k-way; }"))
+    );
+}
+
+
+TEST_F(decomposition, simpleGivesNonEmptyClosedManifoldParts)
+{
+    const CoarseMesh m = test::cubeMesh(6);
+    const std::vector<label> coeffs =
+        partitionCells(m, 4, dictOf("method simple; coeffs { n (2 2 1); }"));
+    expectGoodPartition(m, coeffs, 4, "simple, coeffs");
+
+    // The older name of the coefficients, which v1912 also reads
+    const std::vector<label> simpleCoeffs =
+        partitionCells(m, 4, dictOf("method simple; simpleCoeffs { n (2 2 1); delta 0.001; }"));
+    expectGoodPartition(m, simpleCoeffs, 4, "simple, simpleCoeffs");
+    EXPECT_EQ(coeffs, simpleCoeffs);
+
+    // Split in x and y only: the parts are the four columns of cubes
+    for (std::size_t c = 0; c < m.tets.size(); ++c)
+    {
+        const int cube = int(c/6);
+        const int i = cube % 6, j = (cube/6) % 6;
+        EXPECT_EQ(coeffs[c], coeffs[6*(i + 6*j)]) << "cell " << c;
+    }
+    std::set<label> columns;
+    for (int i : {0, 5}) for (int j : {0, 5}) columns.insert(coeffs[6*(i + 6*j)]);
+    EXPECT_EQ(columns.size(), 4u);
+
+    expectGoodPartition(m, partitionCells(m, 8, dictOf("method simple; coeffs { n (2 2 2); }")), 8,
+        "simple (2 2 2)");
+}
+
+
+TEST_F(decomposition, hierarchicalGivesNonEmptyClosedManifoldParts)
+{
+    const CoarseMesh m = test::cubeMesh(6);
+    expectGoodPartition
+    (
+        m,
+        partitionCells(m, 4, dictOf("method hierarchical; coeffs { n (2 2 1); order xyz; }")),
+        4, "hierarchical, coeffs"
+    );
+    expectGoodPartition
+    (
+        m,
+        partitionCells
+        (
+            m, 6,
+            dictOf("method hierarchical; hierarchicalCoeffs { n (1 2 3); delta 0.001; order zyx; }")
+        ),
+        6, "hierarchical, hierarchicalCoeffs"
+    );
+}
+
+
+TEST_F(decomposition, multiLevelGivesNonEmptyClosedManifoldParts)
+{
+    const CoarseMesh m = test::cubeMesh(6);
+    const Foam::dictionary dict = dictOf
+    (
+        "method multiLevel;"
+        "multiLevelCoeffs"
+        "{"
+        "    level0 { numberOfSubdomains 2; method simple; coeffs { n (2 1 1); } }"
+        "    level1 { numberOfSubdomains 2; method metis; }"
+        "}"
+    );
+    expectGoodPartition(m, partitionCells(m, 4, dict), 4, "multiLevel");
+}
+
+
+TEST_F(decomposition, scotchWhenItWorks)
+{
+    // Debian's libscotchDecomp is a stub: scotch is known only when the
+    // real library is built and linked
+    if (!contains(validDecompositionMethods(), " scotch") && !contains(validDecompositionMethods(), "(scotch"))
+    {
+        GTEST_SKIP() << "no scotch in " << validDecompositionMethods();
+    }
+    const CoarseMesh m = test::cubeMesh(6);
+    std::vector<label> part;
+    try
+    {
+        part = partitionCells(m, 4, dictOf("method scotch;"));
+    }
+    catch (const FatalError& e)
+    {
+        GTEST_SKIP() << "scotch does not work here: " << e.what();
+    }
+    expectGoodPartition(m, part, 4, "scotch");
+}
+
+
+TEST_F(decomposition, worksOnANetgenCoarseMesh)
+{
+    // An unstructured coarse mesh, as pmshFoam's stage 1 makes it
+    auto g = Geometry::New(test::testDataDir() + "/geometry/sphere.geo");
+    const CoarseMesh m = g->coarseMesh({0.3, 0.3});
+    ASSERT_GT(m.nCells(), 100);
+    for (const char* method :
+    {
+        "method metis;",
+        "method metis; metisCoeffs { method k-way; }",
+        "method simple; coeffs { n (2 2 1); }",
+        "method hierarchical; coeffs { n (2 2 1); order xyz; }"
+    })
+    {
+        expectGoodPartition(m, partitionCells(m, 4, dictOf(method)), 4, method);
+    }
+    expectGoodPartition(m, partitionCells(m, 3, dictOf("method metis;")), 3, "metis 3");
+}
+
+
+// * * * * * * * * * * * * * * numberOfSubdomains * * * * * * * * * * * * * //
+
+TEST_F(decomposition, numberOfSubdomainsIsReplacedByTheNumberOfParts)
+{
+    const CoarseMesh m = test::cubeMesh(6);
+    const std::vector<label> part =
+        partitionCells(m, 4, dictOf("method metis; numberOfSubdomains 2;"));
+    expectGoodPartition(m, part, 4, "metis, numberOfSubdomains 2");
+    EXPECT_EQ(std::set<label>(part.begin(), part.end()).size(), 4u);
+
+    // simple checks that n multiplies to numberOfSubdomains: it must see 4
+    EXPECT_NO_THROW
+    (
+        partitionCells(m, 4, dictOf("method simple; numberOfSubdomains 9; coeffs { n (2 2 1); }"))
+    );
+}
+
+
+TEST_F(decomposition, decompositionDictReadsTheFileAndSetsNumberOfSubdomains)
+{
+    const scratchDir dir;
+    const std::string file = dir.write
+    (
+        "decomposeParDict",
+        std::string(foamHeader)
+      + "numberOfSubdomains 8;\nmethod simple;\ncoeffs\n{\n    n (2 2 1);\n}\n"
+    );
+
+    setInfoSilent(false);
+    testing::internal::CaptureStdout();
+    const Foam::dictionary dict = decompositionDict(Foam::fileName(file), 4);
+    const std::string log = testing::internal::GetCapturedStdout();
+
+    EXPECT_EQ(dict.get<Foam::label>("numberOfSubdomains"), 4);
+    EXPECT_EQ(dict.get<Foam::word>("method"), Foam::word("simple"));
+    EXPECT_FALSE(dict.found("FoamFile"));
+    EXPECT_TRUE(contains(log, "numberOfSubdomains 8")) << log;
+    EXPECT_TRUE(contains(log, file)) << log;
+
+    const CoarseMesh m = test::cubeMesh(4);
+    expectGoodPartition(m, partitionCells(m, 4, dict), 4, "simple from the file");
+}
+
+
+TEST_F(decomposition, decompositionDictSaysNothingWhenNumberOfSubdomainsAgrees)
+{
+    const scratchDir dir;
+    const std::string file = dir.write
+    (
+        "decomposeParDict", std::string(foamHeader) + "numberOfSubdomains 4;\nmethod metis;\n"
+    );
+    setInfoSilent(false);
+    testing::internal::CaptureStdout();
+    const Foam::dictionary dict = decompositionDict(Foam::fileName(file), 4);
+    const std::string log = testing::internal::GetCapturedStdout();
+    EXPECT_FALSE(contains(log, "numberOfSubdomains")) << log;
+    EXPECT_EQ(dict.get<Foam::label>("numberOfSubdomains"), 4);
+}
+
+
+TEST_F(decomposition, decompositionDictWithoutAFileIsMetis)
+{
+    const scratchDir dir;
+    const Foam::dictionary dict =
+        decompositionDict(Foam::fileName(dir.path + "/system/decomposeParDict"), 3);
+    EXPECT_EQ(dict.get<Foam::word>("method"), Foam::word("metis"));
+    EXPECT_EQ(dict.get<Foam::label>("numberOfSubdomains"), 3);
+}
+
+
+TEST_F(decomposition, aMissingRequiredDictionaryIsAFatalError)
+{
+    const scratchDir dir;
+    const std::string file = dir.path + "/myDecomposeParDict";
+    try
+    {
+        decompositionDict(Foam::fileName(file), 2, true);
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        EXPECT_TRUE(contains(e.what(), file)) << e.what();
+        EXPECT_TRUE(contains(e.what(), "does not exist")) << e.what();
+    }
+}
+
+
+TEST_F(decomposition, aBrokenDictionaryIsAFatalErrorNamingTheFile)
+{
+    const scratchDir dir;
+    const std::string file = dir.write
+    (
+        "decomposeParDict", std::string(foamHeader) + "method metis;\ncoeffs { n (2 2 1;\n"
+    );
+    try
+    {
+        decompositionDict(Foam::fileName(file), 2);
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        EXPECT_TRUE(contains(e.what(), file)) << e.what();
+    }
+}
+
+
+TEST_F(decomposition, theDictionaryComesFromTheCaseOrTheDecomposeParDictOption)
+{
+    const scratchDir dir;
+    std::filesystem::create_directories(dir.path + "/system");
+    std::filesystem::create_directories(dir.path + "/other");
+    dir.write("system/decomposeParDict", std::string(foamHeader) + "method hierarchical;\n");
+    dir.write("other/myDict", std::string(foamHeader) + "method simple;\n");
+    dir.write("other/decomposeParDict", std::string(foamHeader) + "method random;\n");
+
+    // argList as pmshFoam makes it, without its initialisation (banner,
+    // signal handlers, libraries). Never destroyed: ~argList ends the
+    // process (UPstream::exit)
+    auto argsOf = [](const std::vector<std::string>& words) -> const Foam::argList*
+    {
+        static std::vector<std::unique_ptr<std::vector<std::string>>> keep;
+        static std::vector<std::unique_ptr<std::vector<char*>>> argvs;
+        keep.push_back(std::make_unique<std::vector<std::string>>(words));
+        argvs.push_back(std::make_unique<std::vector<char*>>());
+        for (std::string& w : *keep.back())
+        {
+            argvs.back()->push_back(&w[0]);
+        }
+        argvs.back()->push_back(nullptr);
+        int argc = int(words.size());
+        char** argv = argvs.back()->data();
+        return new Foam::argList(argc, argv, true, true, false);
+    };
+
+    const auto plain = argsOf({"Test-pmshUnit", "-case", dir.path});
+    EXPECT_EQ(std::string(decompositionDictFile(*plain)), dir.path + "/system/decomposeParDict");
+    EXPECT_EQ(decompositionDict(*plain, 2).get<Foam::word>("method"), Foam::word("hierarchical"));
+
+    // A relative file is relative to the case, as argList resolves it in a
+    // parallel run
+    const auto file = argsOf({"Test-pmshUnit", "-case", dir.path, "-decomposeParDict", "other/myDict"});
+    EXPECT_EQ(std::string(decompositionDictFile(*file)), dir.path + "/other/myDict");
+    const Foam::dictionary dict = decompositionDict(*file, 2);
+    EXPECT_EQ(dict.get<Foam::word>("method"), Foam::word("simple"));
+    EXPECT_EQ(dict.get<Foam::label>("numberOfSubdomains"), 2);
+
+    // A directory holds a decomposeParDict
+    const auto directory =
+        argsOf({"Test-pmshUnit", "-case", dir.path, "-decomposeParDict", dir.path + "/other"});
+    EXPECT_EQ(std::string(decompositionDictFile(*directory)), dir.path + "/other/decomposeParDict");
+
+    // A file asked for must exist
+    const auto missing = argsOf({"Test-pmshUnit", "-case", dir.path, "-decomposeParDict", "other/none"});
+    EXPECT_THROW(decompositionDict(*missing, 2), FatalError);
+}
+
+
+// * * * * * * * * * * * * * * * * * Errors  * * * * * * * * * * * * * * * * //
+
+TEST_F(decomposition, anUnknownMethodIsAFatalErrorNamingTheValidOnes)
+{
+    const CoarseMesh m = test::cubeMesh(2);
+    try
+    {
+        partitionCells(m, 2, dictOf("method fooBar;"));
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        const std::string what = e.what();
+        EXPECT_TRUE(contains(what, "'fooBar'")) << what;
+        EXPECT_TRUE(contains(what, "Valid decomposition methods")) << what;
+        for (const char* valid : {"metis", "simple", "hierarchical"})
+        {
+            EXPECT_TRUE(contains(what, valid)) << what;
+        }
+        EXPECT_FALSE(contains(what, "manual")) << what;
+    }
+}
+
+
+TEST_F(decomposition, aFailingMethodIsAFatalErrorNamingItAndTheValidOnes)
+{
+    // n (2 2 1) makes 4 parts, not 3: OpenFOAM's FatalError, as ours
+    const CoarseMesh m = test::cubeMesh(3);
+    try
+    {
+        partitionCells(m, 3, dictOf("method simple; coeffs { n (2 2 1); }"));
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        const std::string what = e.what();
+        EXPECT_TRUE(contains(what, "'simple'")) << what;
+        EXPECT_TRUE(contains(what, "failed")) << what;
+        EXPECT_TRUE(contains(what, "Valid decomposition methods")) << what;
+        EXPECT_TRUE(contains(what, "metis")) << what;
+    }
+
+    // A method without its coefficients
+    try
+    {
+        partitionCells(m, 4, dictOf("method hierarchical;"));
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        EXPECT_TRUE(contains(e.what(), "'hierarchical'")) << e.what();
+    }
+}
+
+
+TEST_F(decomposition, aMethodThatNeedsAPolyMeshIsAFatalError)
+{
+    const CoarseMesh m = test::cubeMesh(2);
+    try
+    {
+        partitionCells(m, 2, dictOf("method manual; coeffs { dataFile \"decomp\"; }"));
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        EXPECT_TRUE(contains(e.what(), "'manual'")) << e.what();
+        EXPECT_TRUE(contains(e.what(), "Valid decomposition methods")) << e.what();
+    }
+}
+
+
+TEST_F(decomposition, noMethodIsAFatalError)
+{
+    const CoarseMesh m = test::cubeMesh(2);
+    try
+    {
+        partitionCells(m, 2, dictOf("numberOfSubdomains 2;"));
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        EXPECT_TRUE(contains(e.what(), "method")) << e.what();
+        EXPECT_TRUE(contains(e.what(), "Valid decomposition methods")) << e.what();
+    }
+}
+
+
+TEST_F(decomposition, parallelIsSwitchedOffAroundTheDecompositionOnly)
+{
+    // A serial test cannot run MPI; it can check that the flag comes back,
+    // after a failure too
+    const bool oldParRun = Foam::UPstream::parRun();
+    const CoarseMesh m = test::cubeMesh(3);
+    Foam::UPstream::parRun() = true;
+    std::vector<label> part;
+    EXPECT_NO_THROW(part = partitionCells(m, 2, dictOf("method simple; coeffs { n (2 1 1); }")));
+    EXPECT_TRUE(Foam::UPstream::parRun());
+    EXPECT_THROW(partitionCells(m, 2, dictOf("method fooBar;")), FatalError);
+    EXPECT_TRUE(Foam::UPstream::parRun());
+    EXPECT_THROW(partitionCells(m, 3, dictOf("method simple; coeffs { n (2 1 1); }")), FatalError);
+    EXPECT_TRUE(Foam::UPstream::parRun());
+    Foam::UPstream::parRun() = oldParRun;
+    expectGoodPartition(m, part, 2, "simple in a parallel run");
+}
+
+
+TEST_F(decomposition, foamErrorsAreLeftAsTheCallerSetThem)
+{
+    const bool oldThrow = Foam::FatalError.throwExceptions(false);
+    const bool oldIOThrow = Foam::FatalIOError.throwExceptions(false);
+    const CoarseMesh m = test::cubeMesh(2);
+    EXPECT_THROW(partitionCells(m, 2, dictOf("method simple; coeffs { n (3 1 1); }")), FatalError);
+    EXPECT_FALSE(Foam::FatalError.throwing());
+    EXPECT_FALSE(Foam::FatalIOError.throwing());
+    Foam::FatalError.throwExceptions(oldThrow);
+    Foam::FatalIOError.throwExceptions(oldIOThrow);
+}
+
+
+// * * * * * * * * * * * * * * * * * Repair  * * * * * * * * * * * * * * * * //
+
+TEST_F(partition, everyPartIsNonEmptyWithAClosedManifoldSurface)
+{
+    const CoarseMesh m = test::cubeMesh(6);
+    for (label nParts : {2, 3, 4, 7, 16})
+    {
+        const std::vector<label> part = partitionCells(m, nParts);
+        ASSERT_EQ(part.size(), m.tets.size());
+        std::vector<int> size(nParts, 0);
+        for (label p : part)
+        {
+            ASSERT_GE(p, 0);
+            ASSERT_LT(p, nParts);
+            ++size[p];
+        }
+        for (label p = 0; p < nParts; ++p)
+        {
+            EXPECT_GT(size[p], 0) << nParts << " parts";
+            EXPECT_TRUE(test::closedManifold(partitionSurface(m, part, p).faces))
+                << "part " << p << " of " << nParts;
+        }
+        EXPECT_EQ(countNonManifoldParts(m, part), 0) << nParts << " parts";
+    }
+}
+
+
+TEST_F(partition, repairTurnsACheckerboardIntoManifoldParts)
+{
+    // Alternating cubes touch each other only along edges and at corners
+    const int n = 4;
+    const CoarseMesh m = test::cubeMesh(n);
+    std::vector<label> part(m.tets.size());
+    for (std::size_t c = 0; c < part.size(); ++c)
+    {
+        const int cube = int(c/6);
+        const int i = cube % n, j = (cube/n) % n, k = cube/(n*n);
+        part[c] = (i + j + k) % 2;
+    }
+    ASSERT_GT(countNonManifoldParts(m, part), 0);
+
+    const label moved = repairPartition(m, 2, part);
+    EXPECT_GT(moved, 0);
+    EXPECT_EQ(countNonManifoldParts(m, part), 0);
+    for (label p : {0, 1})
+    {
+        EXPECT_TRUE(test::closedManifold(partitionSurface(m, part, p).faces)) << "part " << p;
+    }
+}
+
+
+TEST_F(partition, repairGivesEveryEmptyPartACell)
+{
+    const CoarseMesh m = test::cubeMesh(2);
+    std::vector<label> part(m.tets.size(), 0);
+    repairPartition(m, 3, part);
+    std::set<label> used(part.begin(), part.end());
+    EXPECT_EQ(used.size(), 3u);
+    EXPECT_EQ(countNonManifoldParts(m, part), 0);
+}
+
+
+TEST_F(partition, isTheSameOnEveryCall)
+{
+    const CoarseMesh m = test::cubeMesh(5);
+    EXPECT_EQ(partitionCells(m, 4), partitionCells(m, 4));
+}
+
+
+TEST_F(partition, onePartIsAllZeroWhateverTheMethod)
+{
+    const CoarseMesh m = test::cubeMesh(2);
+    EXPECT_EQ(partitionCells(m, 1, dictOf("method fooBar;")), std::vector<label>(m.tets.size(), 0));
+}
+
+
+TEST_F(partition, moreRanksThanCoarseCellsIsAFatalErrorSayingWhatToDo)
+{
+    const CoarseMesh m = test::cubeMesh(1);    // 6 cells
+    try
+    {
+        partitionCells(m, 7, dictOf("method metis;"));
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("6 cells into 7 parts"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("maxCellSize"), std::string::npos);
+    }
+}

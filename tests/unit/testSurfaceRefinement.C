@@ -1,0 +1,335 @@
+// Partition surfaces and their r-level refinement: counts, closedness,
+// projection, and bit-identical interface vertices on both sides.
+
+#include "surfaceRefinement.H"
+#include "Geometry.H"
+#include "boundaryRegion.H"
+#include "surfaceChecks.H"
+#include "pmshError.H"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+
+using namespace pmsh;
+using namespace pmsh::test;
+
+namespace
+{
+
+// The unit sphere as an analytic geometry: projection is normalisation
+class analyticSphere : public Geometry
+{
+    std::vector<std::string> names_{"sphere"};
+public:
+    const std::vector<std::string>& patchNames() const override { return names_; }
+    CoarseMesh coarseMesh(const coarseMeshParameters&) const override { return {}; }
+    point projectToSurface(const point& p, label) const override
+    {
+        return (1.0/std::sqrt(magSqr(p)))*p;
+    }
+    point projectToEdge(const point& p, label s1, label) const override
+    {
+        return projectToSurface(p, s1);
+    }
+};
+
+// An octahedron around the origin split into 8 tets at the centre point 0
+CoarseMesh octahedron()
+{
+    CoarseMesh m;
+    m.points = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    m.patchNames = {"sphere"};
+    for (label x : {1, 2})
+    {
+        for (label y : {3, 4})
+        {
+            for (label z : {5, 6})
+            {
+                tetCell t{0, x, y, z};
+                triFace f{x, y, z};
+                const auto& P = m.points;
+                if (tetVolume6(P[t[0]], P[t[1]], P[t[2]], P[t[3]]) < 0)
+                {
+                    std::swap(t[2], t[3]);
+                    std::swap(f[1], f[2]);
+                }
+                m.tets.push_back(t);
+                m.boundary.push_back({f, 0, 0});
+            }
+        }
+    }
+    return m;
+}
+
+// Part 0: the tets with x > 0; part 1: the others
+std::vector<label> splitByX(const CoarseMesh& m)
+{
+    std::vector<label> part;
+    for (const tetCell& t : m.tets)
+    {
+        part.push_back(t[1] == 1 ? 0 : 1);
+    }
+    return part;
+}
+
+double enclosedVolume(const std::vector<point>& pts, const std::vector<triFace>& tris)
+{
+    double v6 = 0;
+    for (const triFace& t : tris)
+    {
+        v6 += tetVolume6({0, 0, 0}, pts[t[0]], pts[t[1]], pts[t[2]]);
+    }
+    return v6/6;
+}
+
+FineSurface refinePart
+(
+    const CoarseMesh& m,
+    const std::vector<label>& part,
+    label myPart,
+    const Geometry* g,
+    int r
+)
+{
+    const boundaryEdgeSurfaces edges(m);
+    return refineSurface(m, partitionSurface(m, part, myPart), edges, g, r);
+}
+
+} // End anonymous namespace
+
+
+TEST(partitionSurface, wholeMeshSurfaceIsTheCoarseBoundaryOrientedOutward)
+{
+    const CoarseMesh m = octahedron();
+    const coarsePartSurface s = partitionSurface(m, {}, 0);
+    ASSERT_EQ(s.faces.size(), 8u);
+    EXPECT_TRUE(closedAndConsistent(s.faces));
+    EXPECT_NEAR(enclosedVolume(m.points, s.faces), 4.0/3.0, 1e-12);
+    for (label r : s.region)
+    {
+        EXPECT_EQ(r, 0);
+    }
+}
+
+
+TEST(partitionSurface, eachPartIsClosedWithInterfaceFacesNamingTheOtherPart)
+{
+    const CoarseMesh m = octahedron();
+    const std::vector<label> part = splitByX(m);
+    for (label p : {0, 1})
+    {
+        const coarsePartSurface s = partitionSurface(m, part, p);
+        EXPECT_TRUE(closedAndConsistent(s.faces));
+        EXPECT_NEAR(enclosedVolume(m.points, s.faces), 2.0/3.0, 1e-12);
+        int nInterface = 0;
+        for (std::size_t f = 0; f < s.faces.size(); ++f)
+        {
+            if (isInterfaceRegion(s.region[f]))
+            {
+                ++nInterface;
+                EXPECT_EQ(interfaceNeighbour(s.region[f]), 1 - p);
+                EXPECT_EQ(s.surface[f], -1);
+            }
+        }
+        EXPECT_EQ(nInterface, 4);
+    }
+}
+
+
+TEST(surfaceRefinement, makesFourToTheRTrianglesPerCoarseFace)
+{
+    const CoarseMesh m = octahedron();
+    for (int r = 0; r <= 4; ++r)
+    {
+        const FineSurface s = refinePart(m, {}, 0, nullptr, r);
+        EXPECT_EQ(s.triangles.size(), 8u << (2*r)) << "r = " << r;
+        EXPECT_EQ(s.region.size(), s.triangles.size());
+    }
+}
+
+
+TEST(surfaceRefinement, refinedSurfaceIsClosedWithEachSharedVertexOnce)
+{
+    const CoarseMesh m = octahedron();
+    for (int r = 0; r <= 3; ++r)
+    {
+        const FineSurface s = refinePart(m, {}, 0, nullptr, r);
+        EXPECT_TRUE(closedAndConsistent(s.triangles)) << "r = " << r;
+        // Euler: V - E + F = 2 for a sphere, E = 3F/2
+        EXPECT_EQ(s.points.size(), 2 + s.triangles.size()/2) << "r = " << r;
+        const std::set<barycentricId> unique(s.ids.begin(), s.ids.end());
+        EXPECT_EQ(unique.size(), s.ids.size());
+    }
+}
+
+
+TEST(surfaceRefinement, refinedFaceCarriesTheIdsOfFigureFour)
+{
+    // Coarse face (3, 5, 8) in 1-based ids = points 2, 4, 7
+    CoarseMesh m;
+    m.points.assign(8, point{0, 0, 0});
+    m.points[2] = {0, 0, 0};
+    m.points[4] = {1, 0, 0};
+    m.points[7] = {0, 1, 0};
+    coarsePartSurface face;
+    face.faces = {{2, 4, 7}};
+    face.region = {0};
+    face.surface = {-1};
+    const FineSurface s = refineSurface(m, face, boundaryEdgeSurfaces(m), nullptr, 2);
+
+    EXPECT_EQ(s.points.size(), 15u);
+    EXPECT_EQ(s.triangles.size(), 16u);
+    const std::set<barycentricId> ids(s.ids.begin(), s.ids.end());
+    for
+    (
+        const barycentricId& expected :
+        {
+            barycentricId(3, 4, 5, 0, 8, 0), barycentricId(3, 0, 5, 4, 8, 0),
+            barycentricId(3, 0, 5, 0, 8, 4), barycentricId(3, 1, 5, 2, 8, 1),
+            barycentricId(3, 3, 5, 1, 8, 0), barycentricId(3, 2, 5, 1, 8, 1),
+            barycentricId(3, 0, 5, 1, 8, 3)
+        }
+    )
+    {
+        EXPECT_EQ(ids.count(expected), 1u) << expected;
+    }
+    // Linear positions: the id's weights are the barycentric coordinates
+    for (std::size_t p = 0; p < s.points.size(); ++p)
+    {
+        double x = 0, y = 0;
+        for (int n = 0; n < 3; ++n)
+        {
+            if (s.ids[p].vertex[n] == 5) x = s.ids[p].weight[n]/4.0;
+            if (s.ids[p].vertex[n] == 8) y = s.ids[p].weight[n]/4.0;
+        }
+        EXPECT_DOUBLE_EQ(s.points[p][0], x);
+        EXPECT_DOUBLE_EQ(s.points[p][1], y);
+    }
+}
+
+
+TEST(surfaceRefinement, projectsNewBoundaryVerticesOntoTheGeometry)
+{
+    const CoarseMesh m = octahedron();
+    const analyticSphere sphere;
+
+    const FineSurface projected = refinePart(m, {}, 0, &sphere, 2);
+    for (const point& p : projected.points)
+    {
+        EXPECT_NEAR(std::sqrt(magSqr(p)), 1.0, 1e-12);
+    }
+
+    // Without projection the refined points stay on the flat faces
+    const FineSurface flat = refinePart(m, {}, 0, nullptr, 2);
+    double maxOff = 0;
+    for (const point& p : flat.points)
+    {
+        maxOff = std::max(maxOff, std::abs(std::sqrt(magSqr(p)) - 1.0));
+    }
+    EXPECT_GT(maxOff, 1e-2);
+
+    EXPECT_EQ(countFoldedTriangles(m, partitionSurface(m, {}, 0), projected, 2), 0);
+}
+
+
+TEST(surfaceRefinement, interfaceVerticesAreBitIdenticalOnBothParts)
+{
+    const CoarseMesh m = octahedron();
+    const std::vector<label> part = splitByX(m);
+    const analyticSphere sphere;
+    const int r = 3;
+
+    const FineSurface s0 = refinePart(m, part, 0, &sphere, r);
+    const FineSurface s1 = refinePart(m, part, 1, &sphere, r);
+    EXPECT_TRUE(closedAndConsistent(s0.triangles));
+    EXPECT_TRUE(closedAndConsistent(s1.triangles));
+
+    std::map<barycentricId, point> onPart1;
+    for (std::size_t p = 0; p < s1.ids.size(); ++p)
+    {
+        onPart1[s1.ids[p]] = s1.points[p];
+    }
+    std::size_t nShared = 0;
+    for (std::size_t p = 0; p < s0.ids.size(); ++p)
+    {
+        auto it = onPart1.find(s0.ids[p]);
+        if (it != onPart1.end())
+        {
+            ++nShared;
+            EXPECT_EQ(std::memcmp(&it->second, &s0.points[p], sizeof(point)), 0)
+                << s0.ids[p];
+        }
+    }
+    // The interface is the x = 0 square, 4 coarse faces refined into a disc
+    // of F = 4n^2 triangles with 4n boundary edges: V = 1 + (F + 4n)/2
+    const std::size_t n = 1 << r;
+    EXPECT_EQ(nShared, 2*n*n + 2*n + 1);
+
+    // Interface triangles: the same id triples, opposite orientation
+    auto interfaceTriangles = [](const FineSurface& s)
+    {
+        std::set<std::array<barycentricId, 3>> tris;
+        for (std::size_t t = 0; t < s.triangles.size(); ++t)
+        {
+            if (!isInterfaceRegion(s.region[t])) continue;
+            std::array<barycentricId, 3> ids
+                {s.ids[s.triangles[t][0]], s.ids[s.triangles[t][1]], s.ids[s.triangles[t][2]]};
+            // rotate the smallest first, keeping orientation
+            while (!(ids[0] < ids[1] && ids[0] < ids[2]))
+            {
+                std::rotate(ids.begin(), ids.begin() + 1, ids.end());
+            }
+            tris.insert(ids);
+        }
+        return tris;
+    };
+    const auto t0 = interfaceTriangles(s0);
+    auto t1 = interfaceTriangles(s1);
+    EXPECT_EQ(t0.size(), 4*n*n);
+    for (std::array<barycentricId, 3> t : t0)
+    {
+        std::swap(t[1], t[2]);
+        EXPECT_EQ(t1.count(t), 1u);
+    }
+}
+
+
+namespace
+{
+
+// A "geometry" whose projection throws new points through the centre: the
+// refined triangles turn against their coarse faces
+class foldingGeometry : public analyticSphere
+{
+public:
+    point projectToSurface(const point& p, label) const override
+    {
+        return (-1.0/std::sqrt(magSqr(p)))*p;
+    }
+};
+
+} // End anonymous namespace
+
+
+TEST(surfaceRefinement, projectionThatFoldsTheSurfaceIsAFatalErrorSayingWhatToDo)
+{
+    const CoarseMesh m = octahedron();
+    const analyticSphere sphere;
+    EXPECT_NO_THROW(refinePartSurface(m, {}, 0, &sphere, 2));
+
+    const foldingGeometry folding;
+    try
+    {
+        refinePartSurface(m, {}, 0, &folding, 2);
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("folded"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("maxCellSize"), std::string::npos) << e.what();
+    }
+}

@@ -1,0 +1,312 @@
+// Volume meshers: selection, Netgen on closed surfaces (the contract of
+// VolumeMesher.H verified), bad surfaces rejected with FatalError, and the
+// contract check itself.
+
+#include "testPaths.H"
+#include "VolumeMesher.H"
+#include "Geometry.H"
+#include "netgenInterface.H"
+#include "partitionCoarseMesh.H"
+#include "surfaceRefinement.H"
+#include "testUtilities.H"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <map>
+
+using namespace pmsh;
+using namespace pmsh::test;
+
+namespace
+{
+
+const std::string dataDir = std::string(PMSH_TEST_DATA) + "/geometry/";
+
+
+struct surface
+{
+    std::vector<point> points;
+    std::vector<triFace> triangles;
+};
+
+
+//- The boundary of a coarse mesh as a closed surface: its points renumbered
+//  in order of first use.
+surface boundarySurface(const CoarseMesh& m)
+{
+    surface s;
+    std::map<label, label> index;
+    for (const auto& f : m.boundary)
+    {
+        triFace t;
+        for (int k = 0; k < 3; ++k)
+        {
+            auto it = index.find(f.v[k]);
+            if (it == index.end())
+            {
+                it = index.emplace(f.v[k], label(s.points.size())).first;
+                s.points.push_back(m.points[f.v[k]]);
+            }
+            t[k] = it->second;
+        }
+        s.triangles.push_back(t);
+    }
+    return s;
+}
+
+
+//- An icosphere of radius 1, outward, refined `levels` times.
+surface icosphere(int levels)
+{
+    const double t = (1 + std::sqrt(5.0))/2;
+    surface s;
+    s.points =
+    {
+        {-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+        {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+        {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}
+    };
+    s.triangles =
+    {
+        {0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
+        {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+        {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
+        {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}
+    };
+    auto unit = [](const point& p) { return (1/std::sqrt(magSqr(p)))*p; };
+    for (auto& p : s.points) p = unit(p);
+    for (int l = 0; l < levels; ++l)
+    {
+        std::map<std::pair<label, label>, label> mid;
+        auto m = [&](label a, label b)
+        {
+            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            s.points.push_back(unit(midPoint(s.points[a], s.points[b])));
+            return mid[key] = label(s.points.size()) - 1;
+        };
+        std::vector<triFace> nt;
+        for (const auto& f : s.triangles)
+        {
+            const label ab = m(f[0], f[1]), bc = m(f[1], f[2]), ca = m(f[2], f[0]);
+            nt.push_back({f[0], ab, ca});
+            nt.push_back({f[1], bc, ab});
+            nt.push_back({f[2], ca, bc});
+            nt.push_back({ab, bc, ca});
+        }
+        s.triangles = nt;
+    }
+    return s;
+}
+
+} // End anonymous namespace
+
+
+TEST(VolumeMesher, selection)
+{
+    EXPECT_EQ(VolumeMesher::names(), (std::vector<std::string>{"netgen", "hxt"}));
+    EXPECT_EQ(VolumeMesher::New("netgen")->name(), "netgen");
+    EXPECT_EQ(VolumeMesher::New("hxt")->name(), "hxt");
+    const std::string m = errorOf([]{ VolumeMesher::New("tetgen"); });
+    EXPECT_NE(m.find("Unknown volumeMesher \"tetgen\""), std::string::npos) << m;
+    EXPECT_NE(m.find("netgen"), std::string::npos) << m;
+    EXPECT_NE(m.find("hxt"), std::string::npos) << m;
+}
+
+
+TEST(netgenVolumeMesher, coarseSphereBoundary)
+{
+    auto g = Geometry::New(dataDir + "sphere.geo");
+    const surface s = boundarySurface(g->coarseMesh({0.5, 0.3}));
+
+    auto mesher = VolumeMesher::New("netgen");
+    volumeMeshParameters p;
+    p.maxCellSize = 0.5;
+    const TetMesh m = mesher->mesh(s.points, s.triangles, p);
+
+    EXPECT_NO_THROW(verifyVolumeMesh(s.points, s.triangles, m, "test"));
+    ASSERT_GE(m.points.size(), s.points.size());
+    EXPECT_EQ(std::memcmp(m.points.data(), s.points.data(), s.points.size()*sizeof(point)), 0);
+    EXPECT_GT(m.tets.size(), s.triangles.size()/3);
+    for (const auto& t : m.tets)
+    {
+        EXPECT_GT(tetVolume6(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]), 0);
+    }
+
+    // Deterministic: the same input gives the same mesh
+    const TetMesh m2 = mesher->mesh(s.points, s.triangles, p);
+    EXPECT_EQ(m2.tets, m.tets);
+    ASSERT_EQ(m2.points.size(), m.points.size());
+    EXPECT_EQ(std::memcmp(m.points.data(), m2.points.data(), m.points.size()*sizeof(point)), 0);
+}
+
+
+TEST(netgenVolumeMesher, refinedSurfaceAndSpeed)
+{
+    // 5120 triangles (icosphere, 4 levels): interior cells follow the
+    // surface size with grading
+    const surface s = icosphere(4);
+    auto mesher = VolumeMesher::New("netgen");
+    volumeMeshParameters p;
+    p.grading = 0.3;
+    const auto start = std::chrono::steady_clock::now();
+    const TetMesh m = mesher->mesh(s.points, s.triangles, p);
+    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::cout
+        << "Netgen volume mesh: " << s.triangles.size() << " surface triangles -> "
+        << m.tets.size() << " tets, " << m.points.size() << " points in " << sec
+        << " s (" << m.tets.size()/sec << " tets/s)" << std::endl;
+    EXPECT_NO_THROW(verifyVolumeMesh(s.points, s.triangles, m, "test"));
+    EXPECT_GT(m.points.size(), s.points.size());
+}
+
+
+TEST(netgenVolumeMesher, badSurfaces)
+{
+    const surface good = icosphere(1);
+    auto mesher = VolumeMesher::New("netgen");
+    volumeMeshParameters p;
+
+    {
+        // A hole: one triangle removed
+        surface s = good;
+        s.triangles.pop_back();
+        EXPECT_FATAL(mesher->mesh(s.points, s.triangles, p), "is not closed");
+
+        // Netgen itself, without the check, fails with an exception that
+        // becomes a FatalError (not a crash)
+        const std::string m = errorOf([&]
+        {
+            ng::surfaceVolumeMesh(s.points, s.triangles, ng::meshParameters(), "a sphere with a hole");
+        });
+        EXPECT_NE(m.find("Netgen failed to mesh the volume of a sphere with a hole"), std::string::npos) << m;
+    }
+    {
+        // Inverted: every triangle points inward
+        surface s = good;
+        for (auto& t : s.triangles) std::swap(t[1], t[2]);
+        EXPECT_FATAL(mesher->mesh(s.points, s.triangles, p), "negative");
+
+        // Netgen itself: "too many attempts", as a FatalError
+        EXPECT_FATAL
+        (
+            ng::surfaceVolumeMesh(s.points, s.triangles, ng::meshParameters(), "an inverted sphere"),
+            "Netgen failed to mesh the volume of an inverted sphere"
+        );
+    }
+    {
+        // One triangle flipped
+        surface s = good;
+        std::swap(s.triangles[3][1], s.triangles[3][2]);
+        EXPECT_FATAL(mesher->mesh(s.points, s.triangles, p), "inconsistently oriented");
+    }
+    {
+        // A point no triangle uses: Netgen would renumber
+        surface s = good;
+        s.points.push_back({5, 5, 5});
+        EXPECT_FATAL(mesher->mesh(s.points, s.triangles, p), "is used by no triangle");
+        EXPECT_FATAL
+        (
+            ng::surfaceVolumeMesh(s.points, s.triangles, ng::meshParameters(), "x"),
+            "is not used by any triangle"
+        );
+    }
+    {
+        surface s = good;
+        s.triangles[0][0] = 1000;
+        EXPECT_FATAL(mesher->mesh(s.points, s.triangles, p), "refers to point 1000");
+    }
+
+    // After all these failures Netgen still works
+    EXPECT_NO_THROW(mesher->mesh(good.points, good.triangles, p));
+}
+
+
+TEST(netgenVolumeMesher, optimisesAfterTheAdvancingFrontRecovers)
+{
+    // This partition surface (found by a scan of the tutorials) sends
+    // Netgen 6.2's MeshVolume down its failure path ("Call remove
+    // problem"), which leaves the tets flagged fixed: the optimiser then
+    // removed no cells, 5931 tets instead of 4421 (4001-4069 for the same
+    // surface with its points shuffled). See netgenInterface.C.
+    auto g = Geometry::New
+    (
+        std::string(PMSH_SOURCE_DIR) + "/tutorials/sphereSTL/constant/geometry/sphere.stl"
+    );
+    const CoarseMesh coarse = g->coarseMesh({0.4, 0.3});
+    const std::vector<label> cellPart = partitionCells(coarse, 3);
+    const FineSurface s = refinePartSurface(coarse, cellPart, 2, g.get(), 2);
+    volumeMeshParameters p;
+    p.maxCellSize = 0.1;
+    p.grading = 0.3;
+    const TetMesh m = VolumeMesher::New("netgen")->mesh(s.points, s.triangles, p);
+    EXPECT_LT(m.tets.size(), 5000u);
+}
+
+
+TEST(hxtVolumeMesher, partitionSurfacesWithEdgesLongerThanTheFineSize)
+{
+    // Partition interfaces are refined coarse interior faces, whose edges
+    // exceed maxCellSize: at r = 2 they are longer than the fine size.
+    // Gmsh 4.8.4 crashed on every such surface of this sphere when the fine
+    // size was its Mesh.MeshSizeMax (hxtVolumeMesher.C)
+    const double maxCellSize = 0.3;
+    const int levels = 2;
+    auto g = Geometry::New(dataDir + "sphere.geo");
+    const CoarseMesh coarse = g->coarseMesh({maxCellSize, 0.3});
+    const std::vector<label> cellPart = partitionCells(coarse, 2);
+    volumeMeshParameters p;
+    p.maxCellSize = maxCellSize/(1 << levels);
+    auto mesher = VolumeMesher::New("hxt");
+    for (label part = 0; part < 2; ++part)
+    {
+        const FineSurface s = refinePartSurface(coarse, cellPart, part, g.get(), levels);
+        double longest = 0;
+        for (const triFace& t : s.triangles)
+        {
+            for (int k = 0; k < 3; ++k)
+            {
+                longest = std::max(longest, std::sqrt(magSqr(s.points[t[(k + 1)%3]] - s.points[t[k]])));
+            }
+        }
+        ASSERT_GT(longest, 2*p.maxCellSize) << "partition " << part;
+
+        const TetMesh m = mesher->mesh(s.points, s.triangles, p);
+        EXPECT_NO_THROW(verifyVolumeMesh(s.points, s.triangles, m, "test"));
+    }
+}
+
+
+TEST(verifyVolumeMesh, detectsBrokenContracts)
+{
+    const surface s = icosphere(1);
+    auto mesher = VolumeMesher::New("netgen");
+    const TetMesh good = mesher->mesh(s.points, s.triangles, volumeMeshParameters());
+    EXPECT_NO_THROW(verifyVolumeMesh(s.points, s.triangles, good, "good"));
+
+    {
+        TetMesh m = good;
+        m.points[3][0] = std::nextafter(m.points[3][0], 2.0);
+        EXPECT_FATAL(verifyVolumeMesh(s.points, s.triangles, m, "moved"), "does not keep surface point 3");
+    }
+    {
+        TetMesh m = good;
+        std::swap(m.tets[0][0], m.tets[0][1]);
+        EXPECT_FATAL(verifyVolumeMesh(s.points, s.triangles, m, "inverted"), "is inverted");
+    }
+    {
+        TetMesh m = good;
+        m.tets.pop_back();
+        const std::string msg = errorOf([&]{ verifyVolumeMesh(s.points, s.triangles, m, "missing"); });
+        EXPECT_FALSE(msg.empty());
+    }
+    {
+        TetMesh m;
+        EXPECT_FATAL(verifyVolumeMesh(s.points, s.triangles, m, "empty"), "has no tets");
+    }
+}
