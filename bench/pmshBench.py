@@ -642,7 +642,7 @@ def machine_description(args):
     os_name = os_name.strip().strip('"') if os_name else "?"
     commit = command_output(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"]) or "?"
     dirty = command_output(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no",
-                            "--", "src", "pmshFoam.C", "createFields.H", "CMakeLists.txt"])
+                            "--", "src", "pmshFoam.C", "createFields.H", "Make"])
     try:
         import matplotlib
         mpl = matplotlib.__version__

@@ -227,7 +227,7 @@ void pmsh::reportSummary
     const double total = stages.total();
     const std::vector<double> memory = comm.allGather(double(peakMemoryBytes()));
     const std::vector<double> cellsPerRank =
-        comm.allGather(double(volume.mesh.tets.size()));
+        comm.allGather(double(volume.nCells));
     const std::vector<double> attemptsPerRank = comm.allGather(double(volume.attempts));
     const std::vector<std::string> backends = VolumeMesher::names();
     const std::vector<double> backendPerRank = comm.allGather

@@ -148,6 +148,7 @@ pmsh::partitionVolumeResult pmsh::meshPartitionVolume
             );
             result.backend = attempts[a].backend;
             result.attempts = int(a) + 1;
+            result.nCells = label(result.mesh.tets.size());
             result.failures = failures;
             return result;
         }
