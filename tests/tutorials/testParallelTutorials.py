@@ -48,10 +48,12 @@ def write_list_file(path, cls, obj, items, fmt):
 
 class ParallelCaseTest(CaseTest):
 
-    def mesh_parallel(self, name, np, r, **entries):
+    def mesh_parallel(self, name, np, r, precision=None, **entries):
         """pmshFoam -parallel, then checkMesh -parallel must say Mesh OK and
         match coupled points; returns (case, total cells)."""
         c = self.case(name, refinementLevels=r, **entries)
+        if precision:
+            c.set_entry("system/controlDict", "writePrecision", precision)
         _, log = c.run("pmshFoam", np=np)
         self.assertIn("End", log)
         for p in range(np):
@@ -197,19 +199,58 @@ class parallelRun(ParallelCaseTest):
         with open(os.path.join(c.dir, "system/decomposeParDict"), "w") as f:
             f.write("FoamFile\n{\n    version 2.0;\n    format ascii;\n    class dictionary;\n"
                     "    object decomposeParDict;\n}\nnumberOfSubdomains 7;\n"
-                    "method hierarchical;\ncoeffs { n (1 1 1); }\n")
+                    "method hierarchical;\ncoeffs { n (2 1 1); }\n")
         c.run("pmshFoam", np=2)
         with open(os.path.join(c.dir, "system/decomposeParDict")) as f:
             text = f.read()
         self.assertRegex(text, r"numberOfSubdomains\s+2;")
-        self.assertIn("method hierarchical;", text)
+        self.assertRegex(text, r"method\s+hierarchical;")
+        self.assertRegex(text, r"n\s+\(\s*2 1 1\s*\);")
+
+    def test_decomposeParDictMethodPartitionsTheCoarseMesh(self):
+        """The coarse mesh is split by the method system/decomposeParDict
+        names (simple cuts along x here: rank 0 holds the cells of x < 0),
+        and the result is a valid parallel mesh."""
+        for method, coeffs in (("simple", "n (2 1 1);"), ("hierarchical", "n (2 1 1);"),
+                               ("metis", "")):
+            c = self.case("sphere", refinementLevels=1)
+            with open(os.path.join(c.dir, "system/decomposeParDict"), "w") as f:
+                f.write("FoamFile { version 2.0; format ascii; class dictionary;"
+                        " object decomposeParDict; }\n"
+                        "numberOfSubdomains 2;\nmethod %s;\ncoeffs { %s }\n" % (method, coeffs))
+            _, log = c.run("pmshFoam", np=2)
+            self.assertIn("Selecting decompositionMethod %s" % method, log)
+            c.check_mesh(np=2)
+            if method != "metis":
+                for rank, sign in ((0, -1), (1, 1)):
+                    pts = c.polymesh("processor%d/constant/polyMesh" % rank).points()
+                    mean_x = sum(p[0] for p in pts) / len(pts)
+                    self.assertGreater(sign * mean_x, 0.2,
+                                       "%s: rank %d's points centre at x = %g"
+                                       % (method, rank, mean_x))
+
+    def test_collatedOutputIsReadByCheckMeshAndTheSolver(self):
+        """-fileHandler collated: one processors2/ directory that OpenFOAM's
+        own tools read back, and a solver runs on it without decomposePar."""
+        c = self.case("sphere", refinementLevels=1)
+        c.run("pmshFoam", "-fileHandler", "collated", np=2)
+        self.assertTrue(c.exists("processors2/constant/polyMesh/faces"))
+        self.assertTrue(c.exists("processors2/0/U"))
+        self.assertFalse(c.exists("processor0"))
+        _, text = c.run("checkMesh", "-fileHandler", "collated", np=2)
+        self.assertRegex(text, r"(?m)^Mesh OK")
+        self.assertRegex(text, r"Coupled point location match.*OK")
+        _, text = c.run("simpleFoam", "-fileHandler", "collated", np=2)
+        self.assertRegex(text, r"(?m)^End")
+        self.assertTrue(c.exists("processors2/5/U"), "the solver's fields at endTime")
 
     def test_procAddressingDescribesAValidGlobalMesh(self):
         """Assemble constant/polyMesh from the processor meshes through
         their procAddressing alone; checkMesh must accept it, and
         reconstructPar must map the parallel cell centres onto it."""
         np = 3
-        c, nCells = self.mesh_parallel("shaft", np, 1)
+        # Points as computed, so that the cell centres compare to 1e-9
+        c, nCells = self.mesh_parallel("shaft", np, 1, precision=17)
         procs = [PolyMeshFiles(os.path.join(c.dir, "processor%d/constant/polyMesh" % p))
                  for p in range(np)]
 
