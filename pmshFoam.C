@@ -256,20 +256,24 @@ int main(int argc, char *argv[])
         {
             pmsh::checkGlobalNumbersFitLabel(comm, addressing);
         });
+        surface = pmsh::FineSurface();
         pmsh::failTogether(comm, [&]
         {
-            const autoPtr<fvMesh> meshPtr =
-                pmsh::toFvMesh(output->time(), std::move(rankMesh));
-            const fvMesh& mesh = meshPtr();
             if (fileHandler().type() != outputFileHandler)
             {
                 autoPtr<fileOperation> writer(fileOperation::New(outputFileHandler, false));
                 fileHandler(writer);
             }
+            if (comm.parallel())
+            {
+                pmsh::writeProcAddressing(output->time(), std::move(addressing));
+            }
+            const autoPtr<fvMesh> meshPtr =
+                pmsh::toFvMesh(output->time(), std::move(rankMesh));
+            const fvMesh& mesh = meshPtr();
             mesh.write();
             if (comm.parallel())
             {
-                pmsh::writeProcAddressing(mesh, addressing);
                 #include "createFields.H"
             }
         });

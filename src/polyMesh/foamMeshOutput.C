@@ -19,11 +19,16 @@ Foam::autoPtr<Foam::fvMesh> pmsh::toFvMesh(const Foam::Time& time, PolyMesh&& me
     }
     mesh.points = {};
 
+    // One allocation per face: a polyMesh holds its faces as List<face>
     faceList faces(label(mesh.faces.size()));
     forAll(faces, i)
     {
         const pmsh::triFace& f = mesh.faces[i];
-        faces[i] = Foam::face(Foam::labelList({f[0], f[1], f[2]}));
+        Foam::face& g = faces[i];
+        g.setSize(3);
+        g[0] = f[0];
+        g[1] = f[1];
+        g[2] = f[2];
     }
     mesh.faces = {};
 
@@ -118,7 +123,7 @@ namespace
 
 void writeLabelIOList
 (
-    const Foam::polyMesh& mesh,
+    const Foam::Time& time,
     const Foam::word& name,
     const std::vector<pmsh::globalLabel>& values
 )
@@ -128,9 +133,9 @@ void writeLabelIOList
         Foam::IOobject
         (
             name,
-            mesh.facesInstance(),
+            time.constant(),
             Foam::polyMesh::meshSubDir,
-            mesh,
+            time,
             Foam::IOobject::NO_READ,
             Foam::IOobject::NO_WRITE,
             false
@@ -146,12 +151,17 @@ void writeLabelIOList
 
 void pmsh::writeProcAddressing
 (
-    const Foam::polyMesh& mesh,
-    const procAddressing& addressing
+    const Foam::Time& time,
+    procAddressing&& addressing
 )
 {
-    writeLabelIOList(mesh, "pointProcAddressing", addressing.point);
-    writeLabelIOList(mesh, "faceProcAddressing", addressing.face);
-    writeLabelIOList(mesh, "cellProcAddressing", addressing.cell);
-    writeLabelIOList(mesh, "boundaryProcAddressing", addressing.boundary);
+    // Each list is freed once written: they are not needed afterwards
+    writeLabelIOList(time, "pointProcAddressing", addressing.point);
+    addressing.point = {};
+    writeLabelIOList(time, "faceProcAddressing", addressing.face);
+    addressing.face = {};
+    writeLabelIOList(time, "cellProcAddressing", addressing.cell);
+    addressing.cell = {};
+    writeLabelIOList(time, "boundaryProcAddressing", addressing.boundary);
+    addressing.boundary = {};
 }
