@@ -72,6 +72,8 @@ Usage
 #include "surfaceRefinement.H"
 #include "tetsToPolyMesh.H"
 
+#include <mpi.h>
+
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -147,6 +149,20 @@ int main(int argc, char *argv[])
         {
             const word dictName("pmshDict");
             #include "setSystemRunTimeDictionaryIO.H"
+            // Every rank stops on a missing file: reading it would leave
+            // the others waiting for the master's copy
+            const fileName dictFile = dictIO.objectPath().replace
+            (
+                runTime.path(), runTime.globalPath()
+            );
+            if (!isFile(dictFile))
+            {
+                FatalErrorIn("pmshFoam")
+                    << "The mesh dictionary " << dictFile << " does not exist." << nl
+                    << "Create system/" << dictName << " (see the tutorials), or name"
+                    << " another file with -dict <file>"
+                    << exit(FatalError);
+            }
             settings = pmsh::readMeshSettings(IOdictionary(dictIO), runTime.globalPath());
             decomposition = pmsh::decompositionDict(args, comm.size());
             if (comm.parallel())
@@ -307,9 +323,17 @@ int main(int argc, char *argv[])
         comm.abort(1);
     }
 
-    // Ends MPI (also the serial run's, started for Netgen) and exits
-    UPstream::exit(exitCode);
-    return exitCode;
+    // Ends MPI (also the serial run's, started for Netgen) and exits. A
+    // failure every rank agreed on ends MPI normally too: UPstream::exit
+    // would abort for a non-zero code, and returning would let argList end
+    // a parallel run with 0
+    if (exitCode)
+    {
+        MPI_Finalize();
+        std::exit(exitCode);
+    }
+    UPstream::exit(0);
+    return 0;
 }
 
 

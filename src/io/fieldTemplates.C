@@ -20,8 +20,17 @@ const Foam::wordList fieldClasses
 };
 
 
-// Stop unless the value of `keyword` in dict starts with "uniform"
-void requireUniform(const Foam::dictionary& dict, const Foam::word& keyword)
+// Stop unless the value of `keyword` in dict starts with "uniform". The
+// error names the field's file (file, not dict.name(), which for a
+// sub-dictionary is "<file>.boundaryField.<patch>"), the entry's line and
+// where the entry is (scope: "" or "boundaryField/<patch>").
+void requireUniform
+(
+    const Foam::fileName& file,
+    const Foam::dictionary& dict,
+    const Foam::word& keyword,
+    const std::string& scope = ""
+)
 {
     const Foam::entry* e = dict.findEntry(keyword, Foam::keyType::LITERAL);
     if (!e || !e->isStream())
@@ -33,12 +42,16 @@ void requireUniform(const Foam::dictionary& dict, const Foam::word& keyword)
     {
         return;
     }
-    FatalIOErrorInFunction(dict)
-        << "Entry '" << keyword << "' of " << dict.name()
-        << " (line " << e->startLineNumber() << ") is nonuniform:"
+    Foam::FatalIOError
+    (
+        FUNCTION_NAME, __FILE__, __LINE__,
+        file, e->startLineNumber(), e->endLineNumber()
+    )
+        << "Entry '" << keyword.c_str() << "'"
+        << (scope.empty() ? "" : " of " + scope).c_str() << " is nonuniform:"
         << " pmshFoam makes new cells and faces, so only uniform values"
         << " can be given to them." << Foam::nl
-        << "Write it as '" << keyword << " uniform <value>;'"
+        << "Write it as '" << keyword.c_str() << " uniform <value>;'"
         << Foam::exit(Foam::FatalIOError);
 }
 
@@ -63,12 +76,16 @@ std::vector<pmsh::fieldTemplate> pmsh::readFieldTemplates(const Foam::Time& runT
         {
             continue;
         }
-        requireUniform(dict, "internalField");
+        requireUniform(dir/file, dict, "internalField");
         for (const entry& patch : dict.subDict("boundaryField"))
         {
             if (patch.isDict())
             {
-                requireUniform(patch.dict(), "value");
+                requireUniform
+                (
+                    dir/file, patch.dict(), "value",
+                    "boundaryField/" + patch.keyword()
+                );
             }
         }
         fields.push_back({file.name(), className, dict});
@@ -101,12 +118,18 @@ void pmsh::checkPatchCoverage
             {
                 continue;
             }
-            FatalIOErrorInFunction(bf)
-                << "Field " << field.name << " has no boundary condition for patch '"
-                << patch.name << "' (type " << patch.type << ")." << nl
-                << "Add an entry '" << patch.name << " { type ...; }' (or one for"
-                << " its group or a matching \"regex\") to boundaryField of "
-                << field.dict.name()
+            // The field's file (bf.name() is "<file>.boundaryField"), no
+            // line: boundaryField's first entry may come from an #include
+            FatalIOError
+            (
+                FUNCTION_NAME, __FILE__, __LINE__, field.dict.name(), -1, -1
+            )
+                << "Field " << field.name.c_str() << " has no boundary condition"
+                << " for patch '" << patch.name.c_str() << "' (type "
+                << patch.type.c_str() << ")." << nl
+                << "Add an entry '" << patch.name.c_str() << " { type ...; }'"
+                << " (or one for its group or a matching \"regex\") to its"
+                << " boundaryField"
                 << exit(FatalIOError);
         }
     }

@@ -134,9 +134,15 @@ double bounded
      || !(t->number() >= lo && t->number() <= hi)
     )
     {
-        // 1e1 is written back as 10: say why it is wrong
+        // 1e1 is written back as 10, and "is fine" reads as a verdict:
+        // say why the value is wrong
         const bool real = integral && t && t->isScalar();
-        invalid(d, *e, valid, real ? " (not an integer)" : "");
+        const bool number = t && t->isNumber();
+        invalid
+        (
+            d, *e, valid,
+            real ? " (not an integer)" : t && !number ? " (not a number)" : ""
+        );
     }
     return t->number();
 }

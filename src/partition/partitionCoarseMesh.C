@@ -539,19 +539,9 @@ std::string methodFrom(const Foam::dictionary& dict)
 }
 
 
-// Decompose with OpenFOAM's decompositionMethod; cellPart[c] in [0, nParts)
-std::vector<label> decomposeCells
-(
-    const CoarseMesh& coarse,
-    label nParts,
-    const Foam::dictionary& decompositionDict
-)
+// Stop unless dict names a method this executable can use on a tet mesh
+void checkDecompositionMethod(const Foam::dictionary& dict)
 {
-    const label nCells = coarse.nCells();
-
-    Foam::dictionary dict(decompositionDict);
-    dict.set("numberOfSubdomains", Foam::label(nParts));
-
     const std::string method = methodName(dict);
     const std::vector<std::string> known = knownMethods();
     if (method.empty())
@@ -582,6 +572,23 @@ std::vector<label> decomposeCells
             "partitionCells"
         );
     }
+}
+
+
+// Decompose with OpenFOAM's decompositionMethod; cellPart[c] in [0, nParts)
+std::vector<label> decomposeCells
+(
+    const CoarseMesh& coarse,
+    label nParts,
+    const Foam::dictionary& decompositionDict
+)
+{
+    const label nCells = coarse.nCells();
+
+    Foam::dictionary dict(decompositionDict);
+    dict.set("numberOfSubdomains", Foam::label(nParts));
+
+    checkDecompositionMethod(dict);
 
     // The graph: the face neighbours of every coarse tet; the points: the
     // tet centroids; the weights: 1
@@ -740,7 +747,9 @@ Foam::dictionary pmsh::decompositionDict
         throw FatalError
         (
             msg() << "The decomposition dictionary " << dictFile
-                << " (-decomposeParDict) does not exist",
+                << " (-decomposeParDict) does not exist.\n"
+                << "Name an existing file, or leave -decomposeParDict out to use"
+                << " system/decomposeParDict (method metis when there is none)",
             "decompositionDict"
         );
     }
@@ -772,6 +781,9 @@ Foam::dictionary pmsh::decompositionDict
         }
     }
     dict.set("numberOfSubdomains", Foam::label(nParts));
+
+    // A wrong method stops now, before the coarse mesh is made
+    checkDecompositionMethod(dict);
     return dict;
 }
 

@@ -1,15 +1,18 @@
-"""Bad input end to end: pmshFoam stops before meshing with an
-OpenFOAM-style "--> FOAM FATAL ERROR" that names the file, the entry (and
-its line) and what would be valid, exits non-zero on every rank, finishes
+"""Bad input end to end: pmshFoam stops before meshing with an OpenFOAM
+error block ("--> FOAM FATAL ERROR" or, for a dictionary entry, "--> FOAM
+FATAL IO ERROR" with "file: <path> at line N.") that names the file, the
+entry (and its line) and what would be valid, exits non-zero, finishes
 promptly, and writes or changes nothing in the case.
 
 Every run is checked for all of that (BadInputTest.expect_fatal):
 
-- the exit code is non-zero; in parallel, every rank's own exit code is
-  non-zero (each rank runs under a wrapper that records it, with mpirun
-  told not to kill the others when the first one exits) and so is mpirun's;
-- "FOAM FATAL ERROR" is printed once (not once per rank), no rank was
-  killed by MPI_ABORT, and the message holds the given key phrases;
+- the exit code is non-zero (and not a signal's). In parallel that is
+  mpirun's: a failure every rank agreed on (failTogether) ends, as
+  OpenFOAM's own utilities end on a fatal error, in UPstream::exit(1),
+  i.e. MPI_Abort on every rank, so Open MPI's "MPI_ABORT was invoked"
+  notice is expected and the ranks' own exit codes are not theirs to give;
+- the error block is printed once (not once per rank), no rank crashed
+  (no signal, no stack trace), and the block holds the given key phrases;
 - the run finishes within RUN_TIMEOUT seconds (a hang fails the test);
 - the case tree is unchanged byte for byte: no constant/polyMesh, no
   processor*, no hidden temporaries (.processor*, constant/.polyMesh*), no
@@ -35,7 +38,6 @@ import stat
 import struct
 import subprocess
 import sys
-import tempfile
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -170,8 +172,8 @@ class BadInputTest(CaseTest):
     def pmshFoam_argv(self, case, args):
         return [case.pmshFoam] + list(args) + ["-case", case.dir]
 
-    def run_serial(self, case, args, prefix=()):
-        return run_bounded(list(prefix) + self.pmshFoam_argv(case, args), case.root)
+    def run_serial(self, case, args, prefix=(), env=None):
+        return run_bounded(list(prefix) + self.pmshFoam_argv(case, args), case.root, env)
 
     def run_parallel(self, case, np, args):
         """mpirun -np np pmshFoam -parallel. Returns (mpirun's exit code,
@@ -199,20 +201,18 @@ class BadInputTest(CaseTest):
 
     # -- the checks -------------------------------------------------------
 
-    def expect_fatal(self, case, phrases, np=1, args=(), prefix=()):
+    def expect_fatal(self, case, phrases, np=1, args=(), prefix=(), env=None):
         """Run pmshFoam on case; it must fail as described at the top and
         leave the case as it was. Returns the log."""
         before = tree_snapshot(case.dir)
         if np > 1:
             code, log = self.run_parallel(case, np, args)
         else:
-            code, log = self.run_serial(case, args, prefix)
+            code, log = self.run_serial(case, args, prefix, env)
             self.check_output(log)
         self.assertNotEqual(code, 0, log[-3000:])
         self.assertLess(code, 128, "killed by a signal, not stopped:\n" + log[-3000:])
         error = self.error_of(log)
-        if os.environ.get("SHOWERR"):  # TEMPDEBUG
-            print("\n=====", self.id(), "rc", code, "\n" + log[log.index("Create time"):] if "Create time" in log else log)  # TEMPDEBUG
         for phrase in phrases:
             self.assertIn(phrase, error, "%r missing from the error:\n%s"
                           % (phrase, error[:3000]))
@@ -319,29 +319,30 @@ class cases:
             lines = f.readlines()
         with open(pmshDict, "w") as f:
             f.writelines(l for l in lines if not l.startswith("maxCellSize"))
-        return c, ["Entry 'maxCellSize' not found", "system/pmshDict",
-                   "Valid values are numbers > 0"]
+        return c, ["Entry 'maxCellSize' not found", "file: %s" % pmshDict,
+                   "maxCellSize must be a number > 0"]
 
     def maxCellSizeOfTheWrongType(self):
         c = self.case("sphere", maxCellSize="fine")
-        return c, ["Entry 'maxCellSize'", "system/pmshDict", self.dict_line(c, "maxCellSize"),
-                   "'fine'", "Expected a number", "Valid values are numbers > 0"]
+        return c, ["Entry 'maxCellSize' is fine (not a number)",
+                   self.dict_line(c, "maxCellSize"), "maxCellSize must be a number > 0"]
 
     def nonPositiveMaxCellSize(self):
         c = self.case("sphere", maxCellSize=0)
-        return c, ["Entry 'maxCellSize'", "system/pmshDict", self.dict_line(c, "maxCellSize"),
-                   "is 0", "Valid values are numbers > 0"]
+        return c, ["Entry 'maxCellSize' is 0\n", self.dict_line(c, "maxCellSize"),
+                   "maxCellSize must be a number > 0"]
 
     def unknownVolumeMesher(self):
         c = self.case("sphere", volumeMesher="tetgen")
-        return c, ["Entry 'volumeMesher'", "system/pmshDict",
-                   self.dict_line(c, "volumeMesher"), "is tetgen",
-                   "Valid values are:", "netgen"]
+        return c, ["Entry 'volumeMesher' is tetgen", self.dict_line(c, "volumeMesher"),
+                   "Valid values are: netgen"]
 
     def refinementLevelsBeyondTheMemory(self):
         c = self.case("sphere", refinementLevels=10)
-        return c, ["Entry 'refinementLevels'", "system/pmshDict",
-                   self.dict_line(c, "refinementLevels") + " is 10",
+        # pmsh::FatalError (not an IOerror): the file and line in the text
+        pmshDict = self.path(c, "system/pmshDict")
+        return c, ["Entry 'refinementLevels' in dictionary \"%s\" (line %d) is 10"
+                   % (pmshDict, line_of(pmshDict, "refinementLevels")),
                    "not fit in the memory", "of memory", "fewer refinementLevels",
                    "more ranks", "larger maxCellSize"]
 
@@ -350,7 +351,9 @@ class cases:
     def missingControlDict(self):
         c = self.case("sphere")
         os.remove(self.path(c, "system/controlDict"))
-        return c, ["Cannot find", "system/controlDict", "OpenFOAM case"]
+        # OpenFOAM's own error, while Time is created (in parallel it names
+        # processor0/system/controlDict, as OpenFOAM's utilities do)
+        return c, ["cannot find file", "system/controlDict\""]
 
 
 class badInput(BadInputTest, cases):
@@ -367,8 +370,16 @@ class badInput(BadInputTest, cases):
         geo = self.path(c, "constant/geometry/sphere.geo")
         os.chmod(geo, 0)
         prefix = ()
+        env = None
         if os.geteuid() == 0:
-            # root reads anything: run as nobody, who may read the rest
+            # root reads anything: run as nobody, who may read the rest, and
+            # a copy of OpenFOAM's etc/ (its controlDict is read at start;
+            # the installation may be where nobody cannot read, below /root)
+            env = openfoam_environment()
+            project = os.path.join(c.root, "OpenFOAM")
+            shutil.copytree(os.path.join(env["WM_PROJECT_DIR"], "etc"),
+                            os.path.join(project, "etc"))
+            env["WM_PROJECT_DIR"] = project
             for root, dirs, files in os.walk(c.root):
                 os.chmod(root, os.stat(root).st_mode | stat.S_IROTH | stat.S_IXOTH)
                 for f in files:
@@ -377,7 +388,7 @@ class badInput(BadInputTest, cases):
                         os.chmod(p, os.stat(p).st_mode | stat.S_IROTH)
             prefix = ("setpriv", "--reuid=65534", "--regid=65534", "--clear-groups")
         self.expect_fatal(c, ["sphere.geo", "Entry 'geometry'", self.dict_line(c, "geometry"),
-                              "cannot be read", "permissions"], prefix=prefix)
+                              "cannot be read", "permissions"], prefix=prefix, env=env)
 
     def test_geometryThatIsADirectory(self):
         c = self.case("sphere", geometry='"constant/geometry/body.stl"')
@@ -482,36 +493,49 @@ class badInput(BadInputTest, cases):
     def test_missingPmshDict(self):
         c = self.case("sphere")
         os.remove(self.path(c, "system/pmshDict"))
-        self.expect_fatal(c, ["Cannot find the mesh dictionary", "system/pmshDict", "-dict"])
+        # Names the file and both cures
+        self.expect_fatal(c, ['"%s" does not exist' % self.path(c, "system/pmshDict"),
+                              "Create system/pmshDict", "-dict <file>"])
+        # ... and so for the file given with -dict
+        c = self.case("sphere")
+        self.expect_fatal(c, ['"%s" does not exist' % self.path(c, "system/nothere")],
+                          args=["-dict", "system/nothere"])
+
+    def test_missingPmshDictStopsEveryRank(self):
+        """A missing dictionary is seen by every rank: none waits for the
+        master's copy of a file that is not there"""
+        c = self.case("sphere")
+        os.remove(self.path(c, "system/pmshDict"))
+        self.expect_fatal(c, ['"%s" does not exist' % self.path(c, "system/pmshDict")],
+                          np=2)
 
     def test_maxCellSizeOfTheWrongType(self):
         self.expect_fatal(*self.maxCellSizeOfTheWrongType())
 
     def test_refinementLevelsOfTheWrongType(self):
         c = self.case("sphere", refinementLevels=1.5)
-        self.expect_fatal(c, ["Entry 'refinementLevels'", "system/pmshDict",
-                              self.dict_line(c, "refinementLevels"), "1.5",
-                              "Expected an integer",
+        self.expect_fatal(c, ["Entry 'refinementLevels' is 1.5 (not an integer)",
+                              self.dict_line(c, "refinementLevels"),
                               "Valid values are integers 0 <= refinementLevels <= 10"])
 
     def test_nonPositiveMaxCellSize(self):
         self.expect_fatal(*self.nonPositiveMaxCellSize())
         c = self.case("sphere", maxCellSize=-0.1)
-        self.expect_fatal(c, ["Entry 'maxCellSize'", self.dict_line(c, "maxCellSize"),
-                              "is -0.1", "Valid values are numbers > 0"])
+        self.expect_fatal(c, ["Entry 'maxCellSize' is -0.1\n", self.dict_line(c, "maxCellSize"),
+                              "maxCellSize must be a number > 0"])
 
     def test_gradingOutsideZeroToOne(self):
         for value in (1.5, -0.1):
             c = self.case("sphere", grading=value)
-            self.expect_fatal(c, ["Entry 'grading'", "system/pmshDict",
-                                  self.dict_line(c, "grading"), "is %s" % value,
-                                  "Valid values are 0 <= grading <= 1"])
+            self.expect_fatal(c, ["Entry 'grading' is %s\n" % value,
+                                  self.dict_line(c, "grading"),
+                                  "Valid values are numbers 0 <= grading <= 1"])
 
     def test_refinementLevelsOutsideTheirRange(self):
         for value in (11, -1):
             c = self.case("sphere", refinementLevels=value)
-            self.expect_fatal(c, ["Entry 'refinementLevels'", "system/pmshDict",
-                                  self.dict_line(c, "refinementLevels"), "is %d" % value,
+            self.expect_fatal(c, ["Entry 'refinementLevels' is %d\n" % value,
+                                  self.dict_line(c, "refinementLevels"),
                                   "Valid values are integers 0 <= refinementLevels <= 10"])
 
     def test_unknownVolumeMesher(self):
@@ -519,9 +543,17 @@ class badInput(BadInputTest, cases):
 
     def test_unknownEntryNamesTheValidOnes(self):
         c = self.case("sphere", refinementLevel=2)
-        self.expect_fatal(c, ["Unknown entry 'refinementLevel'", "system/pmshDict",
+        self.expect_fatal(c, ["Unknown entry 'refinementLevel'. Did you mean 'refinementLevels'?",
                               self.dict_line(c, "refinementLevel "),
-                              "did you mean 'refinementLevels'", "Valid entries are:"])
+                              "Valid entries are: geometry, maxCellSize, grading,"
+                              " refinementLevels,"])
+
+    def test_labelSizeIsNoLongerAnEntry(self):
+        # Labels follow the OpenFOAM build (WM_LABEL_SIZE) now
+        c = self.case("sphere", labelSize=64)
+        self.expect_fatal(c, ["Entry 'labelSize' is no longer supported",
+                              self.dict_line(c, "labelSize"), "WM_LABEL_SIZE",
+                              "Remove the entry"])
 
     def test_refinementLevelsBeyondTheMachineMemoryStopAfterTheCoarseMesh(self):
         log = self.expect_fatal(*self.refinementLevelsBeyondTheMemory())
@@ -530,14 +562,8 @@ class badInput(BadInputTest, cases):
     # -- case files -------------------------------------------------------
 
     def test_missingControlDict(self):
-        self.expect_fatal(*self.missingControlDict())
-
-    def test_invalidWriteFormatInControlDict(self):
-        c = self.case("sphere")
-        c.write_format("binaryish")
-        self.expect_fatal(c, ["Entry 'writeFormat'", "system/controlDict",
-                              self.dict_line(c, "writeFormat", "system/controlDict"),
-                              "is binaryish", "ascii, binary"])
+        c, phrases = self.missingControlDict()
+        self.expect_fatal(c, phrases + ['"%s"' % self.path(c, "system/controlDict")])
 
     # -- an existing mesh -------------------------------------------------
 
@@ -567,10 +593,10 @@ class badInput(BadInputTest, cases):
 
 class badInputParallel(BadInputTest, cases):
     """mpirun -np 2 (or 3) pmshFoam -parallel: every rank stops together,
-    exits non-zero, one error is printed, no processor* is written. Also
-    what only a parallel run meets: more ranks than coarse cells, and the
-    0/ field templates (a serial run writes no fields, so it does not
-    read them)."""
+    mpirun exits non-zero, one error is printed, no processor* is written.
+    Also what only a parallel run meets: more ranks than coarse cells, the
+    decomposition dictionary, and the 0/ field templates (a serial run
+    writes no fields, so it does not read them)."""
 
     def test_missingGeometryFile(self):
         self.expect_fatal(*self.missingGeometryFile(), np=2)
@@ -632,8 +658,9 @@ class badInputParallel(BadInputTest, cases):
         with open(field, "w") as f:
             f.write(text.replace("internalField   uniform (0 0 0);",
                                  "internalField   nonuniform List<vector> 2((0 0 0) (1 0 0));"))
-        self.expect_fatal(c, [os.path.join("0", "U"), "line %d" % line_of(field, "internalField"),
-                              "internalField is nonuniform", "internalField uniform <value>"],
+        self.expect_fatal(c, ["Entry 'internalField' is nonuniform",
+                              "'internalField uniform <value>;'",
+                              "file: %s at line %d." % (field, line_of(field, "internalField"))],
                           np=2)
 
     def test_nonuniformBoundaryValue(self):
@@ -645,9 +672,45 @@ class badInputParallel(BadInputTest, cases):
             f.write(text.replace("type            noSlip;",
                                  "type            fixedValue;\n"
                                  "        value           nonuniform List<vector> 1((1 0 0));"))
-        self.expect_fatal(c, [os.path.join("0", "U"), "line %d" % line_of(field, "value"),
-                              "'value'", "boundaryField/wall", "is nonuniform",
-                              "'uniform <value>'"], np=2)
+        self.expect_fatal(c, ["Entry 'value' of boundaryField/wall is nonuniform",
+                              "'value uniform <value>;'",
+                              "file: %s at line %d." % (field, line_of(field, "value"))],
+                          np=2)
+
+    def test_fieldWithoutAConditionForAPatch(self):
+        # Found once the coarse mesh gives the patches (Stage 1)
+        c = self.case("sphere")
+        field = self.path(c, "0/U")
+        with open(field) as f:
+            text = f.read()
+        with open(field, "w") as f:
+            f.write(re.sub(r"^    wall$", "    walls", text, flags=re.M))
+        self.expect_fatal(c, ["Field U has no boundary condition for patch 'wall' (type wall)",
+                              "Add an entry 'wall { type ...; }'",
+                              "file: %s\n" % field], np=2)
+
+    # -- the decomposition --------------------------------------------------
+
+    def test_missingDecomposeParDict(self):
+        c = self.case("sphere")
+        log = self.expect_fatal(c, ["The decomposition dictionary %s"
+                                    % self.path(c, "system/nothere"),
+                                    "(-decomposeParDict) does not exist"],
+                                np=2, args=["-decomposeParDict", "system/nothere"])
+        self.assertNotIn("Stage 1", log, "not found before meshing")
+
+    def test_unknownDecompositionMethod(self):
+        c = self.case("sphere")
+        with open(self.path(c, "system/decomposeParDict"), "w") as f:
+            f.write("FoamFile { version 2.0; format ascii; class dictionary;"
+                    " object decomposeParDict; }\n"
+                    "numberOfSubdomains 2;\n"
+                    "method metiss;\n")
+        log = self.expect_fatal(c, ["Unknown decomposition method 'metiss'",
+                                    self.path(c, "system/decomposeParDict"),
+                                    "Valid decomposition methods: (", " metis ", "simple"],
+                                np=2)
+        self.assertNotIn("Stage 1", log, "not found before meshing")
 
     def test_existingProcessorMeshIsKeptWithoutOverwrite(self):
         c = self.case("sphere", refinementLevels=0)
