@@ -164,9 +164,9 @@ int main(int argc, char *argv[])
                     << exit(FatalError);
             }
             settings = pmsh::readMeshSettings(IOdictionary(dictIO), runTime.globalPath());
-            decomposition = pmsh::decompositionDict(args, comm.size());
             if (comm.parallel())
             {
+                decomposition = pmsh::decompositionDict(args, comm.size());
                 fieldTemplates = pmsh::readFieldTemplates(runTime);
             }
             geometry = pmsh::Geometry::New(settings.geometryFile);
