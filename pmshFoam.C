@@ -284,9 +284,8 @@ int main(int argc, char *argv[])
             {
                 pmsh::writeProcAddressing(output->time(), std::move(addressing));
             }
-            const autoPtr<fvMesh> meshPtr =
-                pmsh::toFvMesh(output->time(), std::move(rankMesh));
-            const fvMesh& mesh = meshPtr();
+            const pmsh::foamRankMesh foamMesh(output->time(), std::move(rankMesh));
+            const fvMesh& mesh = foamMesh();
             mesh.write();
             if (comm.parallel())
             {

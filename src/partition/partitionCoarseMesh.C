@@ -806,6 +806,13 @@ const Foam::dictionary& pmsh::defaultDecompositionDict()
         Foam::dictionary d;
         d.name() = defaultName;
         d.add("method", Foam::word("metis"));
+
+        // k-way, not OpenFOAM's default recursive bisection: on the sphere
+        // at r = 4 the recursive parts gave HXT a surface it filled with a
+        // flat cell (checkMesh: aspect ratio 6e9); k-way parts did not
+        Foam::dictionary coeffs;
+        coeffs.add("method", Foam::word("k-way"));
+        d.add("metisCoeffs", coeffs);
         return d;
     }();
     return dict;

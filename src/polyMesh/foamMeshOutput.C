@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cstdlib>
 
-Foam::autoPtr<Foam::fvMesh> pmsh::toFvMesh(const Foam::Time& time, PolyMesh&& mesh)
+pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, PolyMesh&& mesh)
 {
     using namespace Foam;
 
@@ -19,16 +19,18 @@ Foam::autoPtr<Foam::fvMesh> pmsh::toFvMesh(const Foam::Time& time, PolyMesh&& me
     }
     mesh.points = {};
 
-    // One allocation per face: a polyMesh holds its faces as List<face>
-    faceList faces(label(mesh.faces.size()));
+    // The triangles' labels in one block, each face a view of its three.
+    // List<face> forbids this (List::shallowCopy is deleted, as a List
+    // owns its storage): the view is set through UList, and the destructor
+    // takes every view back before the faceList would free it
+    const label nFaces = label(mesh.faces.size());
+    faceLabels_.reset(new label[3*std::size_t(nFaces)]);
+    faceList faces(nFaces);
     forAll(faces, i)
     {
-        const pmsh::triFace& f = mesh.faces[i];
-        Foam::face& g = faces[i];
-        g.setSize(3);
-        g[0] = f[0];
-        g[1] = f[1];
-        g[2] = f[2];
+        label* f = faceLabels_.get() + 3*std::size_t(i);
+        std::copy(mesh.faces[i].begin(), mesh.faces[i].end(), f);
+        static_cast<UList<label>&>(faces[i]).shallowCopy(UList<label>(f, 3));
     }
     mesh.faces = {};
 
@@ -39,7 +41,7 @@ Foam::autoPtr<Foam::fvMesh> pmsh::toFvMesh(const Foam::Time& time, PolyMesh&& me
     std::copy(mesh.neighbour.begin(), mesh.neighbour.end(), neighbour.begin());
     mesh.neighbour = {};
 
-    autoPtr<fvMesh> fvm
+    mesh_.reset
     (
         new fvMesh
         (
@@ -67,19 +69,32 @@ Foam::autoPtr<Foam::fvMesh> pmsh::toFvMesh(const Foam::Time& time, PolyMesh&& me
         {
             patches[i] = new processorPolyPatch
             (
-                p.size, p.start, i, fvm->boundaryMesh(), p.myProcNo, p.neighbProcNo
+                p.size, p.start, i, mesh_->boundaryMesh(), p.myProcNo, p.neighbProcNo
             );
         }
         else
         {
             patches[i] = polyPatch::New
             (
-                p.type, p.name, p.size, p.start, i, fvm->boundaryMesh()
+                p.type, p.name, p.size, p.start, i, mesh_->boundaryMesh()
             ).ptr();
         }
     }
-    fvm->addFvPatches(patches, false);
-    return fvm;
+    mesh_->addFvPatches(patches, false);
+}
+
+
+pmsh::foamRankMesh::~foamRankMesh()
+{
+    // The faces must not free what the block owns
+    if (mesh_.valid())
+    {
+        for (Foam::face& f : const_cast<Foam::faceList&>(mesh_->faces()))
+        {
+            static_cast<Foam::UList<Foam::label>&>(f).shallowCopy(Foam::UList<Foam::label>());
+        }
+        mesh_.clear();
+    }
 }
 
 

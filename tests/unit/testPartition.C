@@ -137,10 +137,14 @@ TEST_F(decomposition, metisGivesNonEmptyClosedManifoldParts)
 }
 
 
-TEST_F(decomposition, metisIsTheDefault)
+TEST_F(decomposition, kWayMetisIsTheDefault)
 {
     const CoarseMesh m = test::cubeMesh(5);
-    EXPECT_EQ(partitionCells(m, 4), partitionCells(m, 4, dictOf("method metis;")));
+    EXPECT_EQ
+    (
+        partitionCells(m, 4),
+        partitionCells(m, 4, dictOf("method metis; metisCoeffs { method k-way; }"))
+    );
     EXPECT_EQ
     (
         Foam::word(defaultDecompositionDict().get<Foam::word>("method")),
