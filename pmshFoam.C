@@ -73,6 +73,7 @@ Usage
 #include "tetsToPolyMesh.H"
 
 #include <mpi.h>
+#include <malloc.h>
 
 #include <cstdlib>
 #include <iostream>
@@ -101,6 +102,13 @@ int main(int argc, char *argv[])
         "file",
         "Use specified file for the decomposition dictionary"
     );
+
+    // Large arrays (a rank's tets, faces, addressing) are freed as soon as
+    // the next stage has what it needs: keep them in their own mappings,
+    // so that freeing them gives the memory back at once (glibc would
+    // otherwise raise its mmap threshold after the first such free and
+    // keep later arrays in the heap, where freed pages stay resident)
+    mallopt(M_MMAP_THRESHOLD, 256*1024);
 
     // Volume meshing runs in forked children that make no MPI calls (see
     // childProcess.H): Open MPI need not warn about the fork
@@ -286,7 +294,7 @@ int main(int argc, char *argv[])
             }
             const pmsh::foamRankMesh foamMesh(output->time(), std::move(rankMesh));
             const fvMesh& mesh = foamMesh();
-            mesh.write();
+            foamMesh.write();
             if (comm.parallel())
             {
                 #include "createFields.H"

@@ -3,6 +3,7 @@
 
 #include "processorPolyPatch.H"
 #include "labelIOList.H"
+#include "faceIOList.H"
 
 #include <algorithm>
 #include <cstdlib>
@@ -19,20 +20,20 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, PolyMesh&& mesh)
     }
     mesh.points = {};
 
-    // The triangles' labels in one block, each face a view of its three.
+    // Each face is a view of its three labels in the PolyMesh's triangles.
     // List<face> forbids this (List::shallowCopy is deleted, as a List
     // owns its storage): the view is set through UList, and the destructor
     // takes every view back before the faceList would free it
-    const label nFaces = label(mesh.faces.size());
-    faceLabels_.reset(new label[3*std::size_t(nFaces)]);
-    faceList faces(nFaces);
+    static_assert(sizeof(triFace) == 3*sizeof(label), "triangles are 3 contiguous labels");
+    triangles_ = std::move(mesh.faces);
+    faceList faces(label(triangles_.size()));
     forAll(faces, i)
     {
-        label* f = faceLabels_.get() + 3*std::size_t(i);
-        std::copy(mesh.faces[i].begin(), mesh.faces[i].end(), f);
-        static_cast<UList<label>&>(faces[i]).shallowCopy(UList<label>(f, 3));
+        static_cast<UList<label>&>(faces[i]).shallowCopy
+        (
+            UList<label>(triangles_[i].data(), 3)
+        );
     }
-    mesh.faces = {};
 
     labelList owner(label(mesh.owner.size()));
     std::copy(mesh.owner.begin(), mesh.owner.end(), owner.begin());
@@ -81,6 +82,87 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, PolyMesh&& mesh)
         }
     }
     mesh_->addFvPatches(patches, false);
+}
+
+
+namespace
+{
+
+// Triangles as a faceCompactList (offsets, then every label), written
+// straight from a block of 3 labels a face: what CompactIOList<face>
+// writes in binary, without its copy of the faces
+class triangleFacesIO
+:
+    public Foam::regIOobject
+{
+    const Foam::UList<Foam::label> labels_;
+
+public:
+
+    triangleFacesIO(const Foam::IOobject& io, const Foam::UList<Foam::label>& labels)
+    :
+        Foam::regIOobject(io),
+        labels_(labels)
+    {}
+
+    const Foam::word& type() const override
+    {
+        static const Foam::word compactFaces("faceCompactList");
+        return compactFaces;
+    }
+
+    bool writeData(Foam::Ostream& os) const override
+    {
+        Foam::labelList offsets(labels_.size()/3 + 1);
+        forAll(offsets, i)
+        {
+            offsets[i] = 3*i;
+        }
+        os  << offsets << labels_;
+        return os.good();
+    }
+};
+
+} // End anonymous namespace
+
+
+void pmsh::foamRankMesh::write() const
+{
+    using namespace Foam;
+
+    const label nFaces = mesh_->nFaces();
+    const bool compact =
+        mesh_->time().writeFormat() == IOstream::BINARY
+     && nFaces > 0
+     && std::size_t(3)*std::size_t(nFaces) <= std::size_t(labelMax);
+    if (!compact)
+    {
+        mesh_->write();
+        return;
+    }
+
+    IOobject& faces = const_cast<faceCompactIOList&>
+    (
+        mesh_->lookupObject<faceCompactIOList>("faces")
+    );
+    faces.writeOpt() = IOobject::NO_WRITE;
+    mesh_->write();
+    faces.writeOpt() = IOobject::AUTO_WRITE;
+
+    triangleFacesIO
+    (
+        IOobject
+        (
+            "faces",
+            mesh_->facesInstance(),
+            polyMesh::meshSubDir,
+            *mesh_,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE,
+            false
+        ),
+        UList<label>(const_cast<label*>(triangles_.front().data()), 3*nFaces)
+    ).write();
 }
 
 
