@@ -52,6 +52,7 @@ Usage
 #include "IOdictionary.H"
 #include "sigFpe.H"
 #include "fileOperation.H"
+#include "IFstream.H"
 
 #include "caseOutput.H"
 #include "coarseMesh.H"
@@ -128,16 +129,48 @@ int main(int argc, char *argv[])
 
     // v1912's collated fileHandler deadlocks (every rank waiting in its
     // readDir) when it looks for the processors directory of a case that
-    // has none yet, as a case pmshFoam meshes: read the case uncollated,
-    // write through the fileHandler asked for
-    const word outputFileHandler = fileHandler().type();
+    // has none yet, as a case pmshFoam meshes: the case is read
+    // uncollated and written through the fileHandler asked for: by
+    // -fileHandler, FOAM_FILEHANDLER, etc/controlDict (argList has set it)
+    // or the case's controlDict (which Time would apply while it reads the
+    // case: so it is taken out here, and applied at the write)
+    word outputFileHandler = fileHandler().type();
     {
         autoPtr<fileOperation> reader(fileOperation::New("uncollated", false));
         fileHandler(reader);
     }
+    const fileName controlDictFile =
+        args.rootPath()/args.globalCaseName()/"system"/Time::controlDictName;
+    if (!isFile(controlDictFile))
+    {
+        // Every rank sees it: one error, and all stop together
+        if (Pstream::master())
+        {
+            std::cerr
+                << pmsh::FatalError
+                   (
+                       "cannot find file \"" + controlDictFile + "\"\n"
+                       "A case needs system/controlDict, as for any OpenFOAM"
+                       " application (see the tutorials)",
+                       "pmshFoam"
+                   ).report() << std::flush;
+        }
+        MPI_Finalize();
+        std::exit(1);
+    }
+    IFstream controlDictStream(controlDictFile);
+    dictionary controlDict(controlDictStream);
+    controlDict.name() = controlDictFile;
+    if (dictionary* switches = controlDict.findDict("OptimisationSwitches"))
+    {
+        if (switches->readIfPresent("fileHandler", outputFileHandler))
+        {
+            switches->remove("fileHandler");
+        }
+    }
 
-    #include "createTime.H"
-
+    Info<< "Create time\n" << endl;
+    Time runTime(controlDict, args.rootPath(), args.caseName());
     // Errors of every rank are agreed on before anyone stops (failTogether)
     FatalError.throwExceptions();
     FatalIOError.throwExceptions();
@@ -256,7 +289,7 @@ int main(int argc, char *argv[])
         (
             "write",
             "Stage 6: writing " + std::string(IOstream::formatNames[runTime.writeFormat()])
-          + " through the " + std::string(fileHandler().type()) + " fileHandler"
+          + " through the " + std::string(outputFileHandler) + " fileHandler"
         );
         pmsh::PolyMesh rankMesh;
         pmsh::failTogether(comm, [&]

@@ -351,9 +351,8 @@ class cases:
     def missingControlDict(self):
         c = self.case("sphere")
         os.remove(self.path(c, "system/controlDict"))
-        # OpenFOAM's own error, while Time is created (in parallel it names
-        # processor0/system/controlDict, as OpenFOAM's utilities do)
-        return c, ["cannot find file", "system/controlDict\""]
+        # OpenFOAM's words, the case's own file (also in parallel)
+        return c, ["cannot find file", "A case needs system/controlDict"]
 
 
 class badInput(BadInputTest, cases):

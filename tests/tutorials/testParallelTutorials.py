@@ -229,6 +229,20 @@ class parallelRun(ParallelCaseTest):
                                        "%s: rank %d's points centre at x = %g"
                                        % (method, rank, mean_x))
 
+    def test_collatedOutputFromTheControlDictSwitch(self):
+        """OptimisationSwitches { fileHandler collated; } in the case's
+        controlDict: the run does not hang (v1912's collated handler would
+        while Time reads a case with no processors directory) and writes
+        processors2/, which checkMesh reads with the same switch."""
+        c = self.case("sphere", refinementLevels=1)
+        with open(os.path.join(c.dir, "system/controlDict"), "a") as f:
+            f.write("\nOptimisationSwitches\n{\n    fileHandler collated;\n}\n")
+        _, log = c.run("pmshFoam", np=2, timeout=300)
+        self.assertIn("through the collated fileHandler", log)
+        self.assertTrue(c.exists("processors2/constant/polyMesh/owner"))
+        self.assertFalse(c.exists("processor0"))
+        self.assertRegex(c.check_mesh(np=2), r"Coupled point location match.*OK")
+
     def test_collatedOutputIsReadByCheckMeshAndTheSolver(self):
         """-fileHandler collated: one processors2/ directory that OpenFOAM's
         own tools read back, and a solver runs on it without decomposePar."""
