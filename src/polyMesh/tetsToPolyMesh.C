@@ -1,5 +1,6 @@
 #include "tetsToPolyMesh.H"
 #include "pmshError.H"
+#include "tetFaceMatching.H"
 
 #include <algorithm>
 #include <cstdint>
@@ -13,22 +14,7 @@ namespace
 
 using namespace pmsh;
 
-// Tet faces and boundary triangles share one id space: tet face f of tet t
-// is 4*t + f, boundary triangle b is 4*nTets + b. 32 bits keep the matching
-// arrays at 8 bytes per tet face.
-using faceId = std::uint32_t;
-constexpr faceId noFace = std::numeric_limits<faceId>::max();
-
 const char* const where = "tetsToPolyMesh";
-
-
-bool sameRotation(const triFace& a, const triFace& b)
-{
-    return
-        (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
-      || (a[0] == b[1] && a[1] == b[2] && a[2] == b[0])
-      || (a[0] == b[2] && a[1] == b[0] && a[2] == b[1]);
-}
 
 
 template<class T>
@@ -38,14 +24,6 @@ std::array<T, 3> sorted3(T a, T b, T c)
     if (b > c) std::swap(b, c);
     if (a > b) std::swap(a, b);
     return {a, b, c};
-}
-
-
-std::string facePoints(const triFace& f)
-{
-    std::ostringstream os;
-    os  << '(' << f[0] << ' ' << f[1] << ' ' << f[2] << ')';
-    return os.str();
 }
 
 
@@ -267,14 +245,6 @@ pmsh::PolyMesh pmsh::tetsToPolyMesh
     const std::size_t nTets = tets.size();
     const std::size_t nTris = boundaryTriangles.size();
     const faceId nTetFaces = faceId(4*nTets);
-    const faceId nIds = faceId(4*nTets + nTris);
-
-    auto faceOf = [&](faceId id) -> triFace
-    {
-        return id < nTetFaces
-            ? tetFace(tets[id/4], int(id % 4))
-            : boundaryTriangles[id - nTetFaces];
-    };
 
 
     // Regions: physical patch index, or the neighbouring rank
@@ -362,207 +332,17 @@ pmsh::PolyMesh pmsh::tetsToPolyMesh
     };
 
 
-    // Match faces: bucket every tet face and triangle by its smallest
-    // point (counting sort), then sort each small bucket by the other two
-    std::vector<faceId> partner(nTetFaces, noFace);
+    const tetFaceMatch match = matchTetFaces(nPoints, tets, boundaryTriangles);
+    if (!match.fits())
     {
-        std::vector<faceId> bucketEnd(nPoints + 1, 0);
-        for (faceId id = 0; id < nIds; ++id)
-        {
-            const triFace f = faceOf(id);
-            ++bucketEnd[std::min({f[0], f[1], f[2]}) + 1];
-        }
-        std::partial_sum(bucketEnd.begin(), bucketEnd.end(), bucketEnd.begin());
-
-        std::vector<faceId> bucketed(nIds);
-        for (faceId id = 0; id < nIds; ++id)
-        {
-            const triFace f = faceOf(id);
-            bucketed[bucketEnd[std::min({f[0], f[1], f[2]})]++] = id;
-        }
-        // Now bucketEnd[v] is the end of bucket v (and the begin of v+1)
-
-        problem open, notTetFace, internalInSurface, nonManifold;
-        problem wrongSide, overlapping;
-
-        struct entry
-        {
-            label k1, k2;
-            faceId id;
-            bool operator<(const entry& o) const
-            {
-                if (k1 != o.k1) return k1 < o.k1;
-                if (k2 != o.k2) return k2 < o.k2;
-                return id < o.id;
-            }
-        };
-        std::vector<entry> bucket;
-
-        faceId begin = 0;
-        for (std::size_t v = 0; v < nPoints; ++v)
-        {
-            const faceId end = bucketEnd[v];
-            bucket.clear();
-            for (faceId i = begin; i < end; ++i)
-            {
-                const triFace f = faceOf(bucketed[i]);
-                const auto s = sorted3(f[0], f[1], f[2]);
-                bucket.push_back({s[1], s[2], bucketed[i]});
-            }
-            begin = end;
-            std::sort(bucket.begin(), bucket.end());
-
-            for (std::size_t i = 0; i < bucket.size(); )
-            {
-                std::size_t j = i + 1;
-                while
-                (
-                    j < bucket.size()
-                 && bucket[j].k1 == bucket[i].k1
-                 && bucket[j].k2 == bucket[i].k2
-                )
-                {
-                    ++j;
-                }
-                // Ids are sorted: tet faces come before triangles
-                std::size_t nTet = 0;
-                while (i + nTet < j && bucket[i + nTet].id < nTetFaces)
-                {
-                    ++nTet;
-                }
-                const std::size_t nTri = j - i - nTet;
-                const faceId a = bucket[i].id;
-                // Only formatted when something is wrong
-                auto pts = [&]() { return facePoints(faceOf(a)); };
-
-                if (nTet == 2 && nTri == 0)
-                {
-                    const faceId b = bucket[i + 1].id;
-                    if (sameRotation(faceOf(a), faceOf(b)))
-                    {
-                        overlapping.add
-                        (
-                            [&]()
-                            {
-                                return
-                                    "tets " + std::to_string(a/4) + " and "
-                                  + std::to_string(b/4) + " at face " + pts();
-                            }
-                        );
-                    }
-                    partner[a] = b;
-                    partner[b] = a;
-                }
-                else if (nTet == 1 && nTri == 1)
-                {
-                    const faceId b = bucket[i + 1].id;
-                    if (!sameRotation(faceOf(a), faceOf(b)))
-                    {
-                        wrongSide.add
-                        (
-                            [&]()
-                            {
-                                return
-                                    "triangle "
-                                  + std::to_string(b - nTetFaces) + " "
-                                  + facePoints(faceOf(b)) + " of tet "
-                                  + std::to_string(a/4);
-                            }
-                        );
-                    }
-                    partner[a] = b;
-                }
-                else if (nTet == 1 && nTri == 0)
-                {
-                    open.add
-                    (
-                        [&]()
-                        {
-                            return
-                                "tet " + std::to_string(a/4) + " face "
-                              + pts();
-                        }
-                    );
-                }
-                else if (nTet == 0)
-                {
-                    for (std::size_t k = i; k < j; ++k)
-                    {
-                        notTetFace.add
-                        (
-                            [&]()
-                            {
-                                return
-                                    "triangle "
-                                  + std::to_string(bucket[k].id - nTetFaces)
-                                  + " " + pts();
-                            }
-                        );
-                    }
-                }
-                else if (nTet == 2)
-                {
-                    for (std::size_t k = i + nTet; k < j; ++k)
-                    {
-                        internalInSurface.add
-                        (
-                            [&]()
-                            {
-                                return
-                                    "triangle "
-                                  + std::to_string(bucket[k].id - nTetFaces)
-                                  + " " + pts();
-                            }
-                        );
-                    }
-                }
-                else
-                {
-                    nonManifold.add
-                    (
-                        [&]()
-                        {
-                            return
-                                std::to_string(nTet) + " tets and "
-                              + std::to_string(nTri) + " triangles share face "
-                              + pts();
-                        }
-                    );
-                }
-                i = j;
-            }
-        }
-
-        std::ostringstream os;
-        auto report = [&os](const problem& p, const char* what)
-        {
-            if (p.count)
-            {
-                os  << "\n    " << p.count << ' ' << what
-                    << " (first: " << p.example << ')';
-            }
-        };
-        report(open, "tet faces are on no other tet and not in the boundary"
-            " surface (boundary face not in the surface)");
-        report(notTetFace, "boundary surface triangles are not a tet face");
-        report(internalInSurface, "boundary surface triangles lie on a face"
-            " between two tets");
-        report(nonManifold, "faces are shared by more than two tets or"
-            " surface triangles (duplicates)");
-        report(wrongSide, "boundary surface triangles are not oriented"
-            " outward from their tet (orientation mismatch)");
-        report(overlapping, "faces are shared by two tets on the same side"
-            " (overlapping tets)");
-        if (!os.str().empty())
-        {
-            throw FatalError
-            (
-                msg() << "The tets (" << nTets << ") and the boundary surface ("
-                    << nTris << " triangles) do not match:" << os.str(),
-                where
-            );
-        }
+        throw FatalError
+        (
+            msg() << "The tets (" << nTets << ") and the boundary surface ("
+                << nTris << " triangles) do not match:" << match.problems,
+            where
+        );
     }
+    const std::vector<faceId>& partner = match.across;
 
 
     PolyMesh mesh;
