@@ -42,7 +42,6 @@
 
 #include "netgenInterface.H"
 #include "pmshError.H"
-#include "surfaceTopology.H"
 #include "tetFaceMatching.H"
 
 #include <algorithm>
@@ -1029,33 +1028,6 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
     const char* function = "pmsh::ng::surfaceVolumeMesh";
     const label nPoints = label(points.size());
 
-    // MeshVolume starts with Mesh::Compress(), which deletes points that no
-    // element uses and renumbers the rest: the surface points would no
-    // longer be 0..n-1. Refuse such input instead.
-    const surfacePointDefects use = findSurfacePointDefects(nPoints, triangles);
-    if (use.badTriangle >= 0)
-    {
-        throw FatalError
-        (
-            msg()
-                << "Triangle " << use.badTriangle << " of " << what
-                << " refers to point " << use.badPoint << ": valid points"
-                << " are 0.." << nPoints - 1,
-            function
-        );
-    }
-    if (use.firstUnused >= 0)
-    {
-        throw FatalError
-        (
-            msg()
-                << "Point " << use.firstUnused << ' ' << str(points[use.firstUnused])
-                << " of " << what << " is not used by any triangle: Netgen would"
-                << " renumber the points. Pass only the points of the surface",
-            function
-        );
-    }
-
     // An element larger than the domain is meaningless, and Netgen's local
     // size tree does not need 1e300
     const double diagonal = boundingBoxDiagonal(points);
@@ -1132,41 +1104,22 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
         );
     }
 
-    const int ne = nglib::Ng_GetNE(mesh);
-    const int np = nglib::Ng_GetNP(mesh);
-    const int nse = nglib::Ng_GetNSE(mesh);
-    if (ne == 0 || np < nPoints || nse != int(triangles.size()))
+    // Ng_GenerateVolumeMesh's steps report no failure but an empty mesh
+    if (nglib::Ng_GetNE(mesh) == 0)
     {
         throw FatalError
         (
             msg()
-                << "Netgen failed to mesh the volume of " << what << ": "
-                << ne << " tets, " << np << " points (" << nPoints
-                << " on the surface), " << nse << " surface triangles ("
-                << triangles.size() << " given)" << session.tail(),
+                << "Netgen failed to mesh the volume of " << what << ": no tets"
+                << session.tail(),
             function
         );
     }
 
+    // The contract (surface points kept in place and in order, the surface
+    // triangles faces of the tets) is VolumeMesher::mesh's to check
     volumeMesh m;
     readNglibMesh(mesh, m, what);
-
-    // Netgen keeps surface points in place and in order (they are
-    // SURFACEPOINTs: only INNERPOINTs move); checked bit for bit
-    for (label i = 0; i < nPoints; ++i)
-    {
-        if (std::memcmp(m.points[i].data(), points[i].data(), sizeof(point)) != 0)
-        {
-            throw FatalError
-            (
-                msg()
-                    << "Netgen moved surface point " << i << " of " << what
-                    << " from " << str(points[i]) << " to " << str(m.points[i]),
-                function
-            );
-        }
-    }
-
     makeTetsPositive(m, what);
 
     return m;

@@ -11,65 +11,26 @@
 
 #include <cstring>
 
-// * * * * * * * * * * * * * * * * Selectors  * * * * * * * * * * * * * * * //
+// * * * * * * * * * * * * * * * Local functions * * * * * * * * * * * * * //
 
-std::vector<std::string> pmsh::VolumeMesher::names()
+namespace
 {
-    return {"netgen", "hxt"};
-}
+
+using namespace pmsh;
+
+const char* const function = "pmsh::VolumeMesher::mesh";
 
 
-std::unique_ptr<pmsh::VolumeMesher> pmsh::VolumeMesher::New(const std::string& name)
-{
-    if (name == "netgen")
-    {
-        return std::unique_ptr<VolumeMesher>(new netgenVolumeMesher());
-    }
-    if (name == "hxt")
-    {
-        return std::unique_ptr<VolumeMesher>(new hxtVolumeMesher());
-    }
-
-    msg m;
-    m   << "Unknown volumeMesher \"" << name << "\".\nValid volume meshers:";
-    for (const std::string& n : names())
-    {
-        m   << "\n    " << n;
-    }
-    throw FatalError(m, "pmsh::VolumeMesher::New");
-}
-
-
-// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
-
-pmsh::TetMesh pmsh::VolumeMesher::mesh
-(
-    const std::vector<point>& surfacePoints,
-    const std::vector<triFace>& surfaceTriangles,
-    const volumeMeshParameters& parameters
-) const
-{
-    checkClosedSurface(surfacePoints, surfaceTriangles, parameters.what);
-    TetMesh result = generate(surfacePoints, surfaceTriangles, parameters);
-    verifyVolumeMesh
-    (
-        surfacePoints, surfaceTriangles, result,
-        title() + "'s mesh of " + parameters.what
-    );
-    return result;
-}
-
-
-// * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * * //
-
-void pmsh::checkClosedSurface
+//- Throw FatalError (naming `what`) unless the triangles form a closed,
+//  manifold, consistently oriented surface enclosing a positive volume and
+//  using every point: what every backend needs (Netgen may crash on less).
+void checkClosedSurface
 (
     const std::vector<point>& points,
     const std::vector<triFace>& triangles,
     const std::string& what
 )
 {
-    const char* function = "pmsh::checkClosedSurface";
     const label np = label(points.size());
 
     if (triangles.size() < 4)
@@ -160,7 +121,9 @@ void pmsh::checkClosedSurface
 }
 
 
-void pmsh::verifyVolumeMesh
+//- Throw FatalError (naming `what`) unless `result` meets the contract of
+//  VolumeMesher.H.
+void verifyVolumeMesh
 (
     const std::vector<point>& surfacePoints,
     const std::vector<triFace>& surfaceTriangles,
@@ -168,7 +131,6 @@ void pmsh::verifyVolumeMesh
     const std::string& what
 )
 {
-    const char* function = "pmsh::verifyVolumeMesh";
     const label nSurface = label(surfacePoints.size());
     const label np = label(result.points.size());
 
@@ -255,6 +217,77 @@ void pmsh::verifyVolumeMesh
         );
     }
 }
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * * Selectors  * * * * * * * * * * * * * * * //
+
+std::vector<std::string> pmsh::VolumeMesher::names()
+{
+    return {"netgen", "hxt"};
+}
+
+
+std::unique_ptr<pmsh::VolumeMesher> pmsh::VolumeMesher::New(const std::string& name)
+{
+    if (name == "netgen")
+    {
+        return std::unique_ptr<VolumeMesher>(new netgenVolumeMesher());
+    }
+    if (name == "hxt")
+    {
+        return std::unique_ptr<VolumeMesher>(new hxtVolumeMesher());
+    }
+
+    msg m;
+    m   << "Unknown volumeMesher \"" << name << "\".\nValid volume meshers:";
+    for (const std::string& n : names())
+    {
+        m   << "\n    " << n;
+    }
+    throw FatalError(m, "pmsh::VolumeMesher::New");
+}
+
+
+std::vector<std::unique_ptr<pmsh::VolumeMesher>> pmsh::VolumeMesher::NewAll
+(
+    const std::string& first
+)
+{
+    std::vector<std::unique_ptr<VolumeMesher>> meshers;
+    meshers.push_back(New(first));
+    for (const std::string& name : names())
+    {
+        if (name != first)
+        {
+            meshers.push_back(New(name));
+        }
+    }
+    return meshers;
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+pmsh::TetMesh pmsh::VolumeMesher::mesh
+(
+    const std::vector<point>& surfacePoints,
+    const std::vector<triFace>& surfaceTriangles,
+    const volumeMeshParameters& parameters
+) const
+{
+    checkClosedSurface(surfacePoints, surfaceTriangles, parameters.what);
+    TetMesh result = generate(surfacePoints, surfaceTriangles, parameters);
+    verifyVolumeMesh
+    (
+        surfacePoints, surfaceTriangles, result,
+        title() + "'s mesh of " + parameters.what
+    );
+    return result;
+}
+
+
 
 
 // ************************************************************************* //

@@ -70,30 +70,6 @@ struct envVar
 
 class volumeBackend : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(volumeBackend, keepsTheSurfaceAndFillsTheVolume)
-{
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
-    volumeMeshParameters p;
-    p.maxCellSize = 0.3;
-    const TetMesh m = VolumeMesher::New(GetParam())->mesh(pts, tris, p);
-    // The contract is verified inside; check it here too, independently
-    ASSERT_GE(m.points.size(), pts.size());
-    for (std::size_t i = 0; i < pts.size(); ++i)
-    {
-        EXPECT_EQ(m.points[i], pts[i]);
-    }
-    double volume = 0;
-    for (const tetCell& t : m.tets)
-    {
-        const double v = tetVolume6(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
-        EXPECT_GT(v, 0);
-        volume += v/6;
-    }
-    EXPECT_NEAR(volume, 4.0*std::acos(-1.0)/3.0, 0.15);
-}
-
 TEST_P(volumeBackend, surfaceWithAHoleIsAFatalErrorNotACrash)
 {
     std::vector<point> pts;
@@ -197,42 +173,6 @@ TEST(partitionVolume, multithreadedHxtGivesAConformingMeshOrFallsBackToOneThread
             meshPartitionVolume("hxt", pts, tris, p, 0, tempFile("t.stl"));
         EXPECT_EQ(r.backend, "hxt");
         EXPECT_LE(r.attempts, 2);
-        // verifyVolumeMesh (conformity included) passed inside; check again
-        EXPECT_NO_THROW(verifyVolumeMesh(pts, tris, r.mesh, "hxt with 2 threads"));
-    }
-}
-
-
-TEST(verifyVolumeMesh, rejectsAMeshWithADuplicatedInteriorPoint)
-{
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
-    volumeMeshParameters p;
-    p.maxCellSize = 0.3;
-    TetMesh m = VolumeMesher::New("netgen")->mesh(pts, tris, p);
-    ASSERT_GT(m.points.size(), pts.size()) << "no interior point to duplicate";
-
-    // Give one tet its own copy of an interior point: volumes still add up
-    const label interior = label(pts.size());
-    for (tetCell& t : m.tets)
-    {
-        auto it = std::find(t.begin(), t.end(), interior);
-        if (it != t.end())
-        {
-            m.points.push_back(m.points[interior]);
-            *it = label(m.points.size() - 1);
-            break;
-        }
-    }
-    try
-    {
-        verifyVolumeMesh(pts, tris, m, "a mesh with a split point");
-        FAIL() << "expected FatalError";
-    }
-    catch (const FatalError& e)
-    {
-        EXPECT_NE(std::string(e.what()).find("not conforming"), std::string::npos) << e.what();
     }
 }
 
