@@ -212,7 +212,8 @@ int main(int argc, char *argv[])
         {
             volume = pmsh::meshPartitionVolume
             (
-                settings.volumeMesher, surface.points, surface.triangles,
+                pmsh::VolumeMesher::NewAll(settings.volumeMesher),
+                surface.points, surface.triangles,
                 pmsh::volumeParameters(settings, comm.rank()), comm.rank(),
                 pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank())
             );

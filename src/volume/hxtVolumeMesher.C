@@ -113,7 +113,7 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         gmsh::option::setNumber("Mesh.Algorithm3D", 10);       // HXT
         // Quirk: with more than one thread, Debian's Gmsh 4.8.4 HXT now and
         // then returns a duplicated interior node (faces matching nothing);
-        // verifyVolumeMesh catches it and meshPartitionVolume retries with
+        // VolumeMesher::mesh catches it and meshPartitionVolume retries with
         // one thread
         gmsh::option::setNumber("General.NumThreads", parameters.threads);
         // Interior size grows from the surface edge lengths, as Netgen's,

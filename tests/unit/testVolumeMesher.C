@@ -29,11 +29,7 @@ namespace
 const std::string dataDir = std::string(PMSH_TEST_DATA) + "/geometry/";
 
 
-struct surface
-{
-    std::vector<point> points;
-    std::vector<triFace> triangles;
-};
+using surface = closedSurface;
 
 
 //- The boundary of a coarse mesh as a closed surface: its points renumbered
@@ -60,51 +56,6 @@ surface boundarySurface(const CoarseMesh& m)
     return s;
 }
 
-
-//- An icosphere of radius 1, outward, refined `levels` times.
-surface icosphere(int levels)
-{
-    const double t = (1 + std::sqrt(5.0))/2;
-    surface s;
-    s.points =
-    {
-        {-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
-        {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
-        {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}
-    };
-    s.triangles =
-    {
-        {0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
-        {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-        {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
-        {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}
-    };
-    auto unit = [](const point& p) { return (1/std::sqrt(magSqr(p)))*p; };
-    for (auto& p : s.points) p = unit(p);
-    for (int l = 0; l < levels; ++l)
-    {
-        std::map<std::pair<label, label>, label> mid;
-        auto m = [&](label a, label b)
-        {
-            const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-            auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            s.points.push_back(unit(midPoint(s.points[a], s.points[b])));
-            return mid[key] = label(s.points.size()) - 1;
-        };
-        std::vector<triFace> nt;
-        for (const auto& f : s.triangles)
-        {
-            const label ab = m(f[0], f[1]), bc = m(f[1], f[2]), ca = m(f[2], f[0]);
-            nt.push_back({f[0], ab, ca});
-            nt.push_back({f[1], bc, ab});
-            nt.push_back({f[2], ca, bc});
-            nt.push_back({ab, bc, ca});
-        }
-        s.triangles = nt;
-    }
-    return s;
-}
 
 } // End anonymous namespace
 
