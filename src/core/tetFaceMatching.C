@@ -16,31 +16,14 @@ std::string facePoints(const triFace& f)
 }
 
 
-//- The count and first example of one kind of misfit.
-struct problem
+//- "\n    <count> <what> (first: <example>)" when there is a problem.
+void report(std::ostream& os, const problemCount& p, const char* what)
 {
-    std::size_t count = 0;
-    std::string example;
-
-    //- describe() is only called for the first one: formatting every bad
-    //  face of a big mesh would be slow.
-    template<class Describe>
-    void add(const Describe& describe)
+    if (p.count)
     {
-        if (count++ == 0)
-        {
-            example = describe();
-        }
+        os  << "\n    " << p.count << ' ' << what << " (first: " << p.first << ')';
     }
-
-    void report(std::ostream& os, const char* what) const
-    {
-        if (count)
-        {
-            os  << "\n    " << count << ' ' << what << " (first: " << example << ')';
-        }
-    }
-};
+}
 
 } // End anonymous namespace
 
@@ -78,7 +61,7 @@ pmsh::tetFaceMatch pmsh::matchTetFaces
 
     tetFaceMatch match;
     match.across.assign(nTetFaces, noFace);
-    problem open, notTetFace, internalInSurface, nonManifold, wrongSide, overlapping;
+    problemCount open, notTetFace, internalInSurface, nonManifold, wrongSide, overlapping;
 
     forEachSamePointsGroup
     (
@@ -129,7 +112,7 @@ pmsh::tetFaceMatch pmsh::matchTetFaces
             }
             else if (nTet == 0 || nTet == 2)
             {
-                problem& p = nTet ? internalInSurface : notTetFace;
+                problemCount& p = nTet ? internalInSurface : notTetFace;
                 for (std::size_t k = nTet; k < n; ++k)
                 {
                     p.add([&] { return triangleName(ids[k]); });
@@ -147,16 +130,16 @@ pmsh::tetFaceMatch pmsh::matchTetFaces
     );
 
     std::ostringstream os;
-    open.report(os, "tet faces are on no other tet and not in the boundary"
+    report(os, open, "tet faces are on no other tet and not in the boundary"
         " surface (boundary face not in the surface)");
-    notTetFace.report(os, "boundary surface triangles are not a tet face");
-    internalInSurface.report(os, "boundary surface triangles lie on a face"
+    report(os, notTetFace, "boundary surface triangles are not a tet face");
+    report(os, internalInSurface, "boundary surface triangles lie on a face"
         " between two tets");
-    nonManifold.report(os, "faces are shared by more than two tets or"
+    report(os, nonManifold, "faces are shared by more than two tets or"
         " surface triangles (duplicates)");
-    wrongSide.report(os, "boundary surface triangles are not oriented"
+    report(os, wrongSide, "boundary surface triangles are not oriented"
         " outward from their tet (orientation mismatch)");
-    overlapping.report(os, "faces are shared by two tets on the same side"
+    report(os, overlapping, "faces are shared by two tets on the same side"
         " (overlapping tets)");
     match.problems = os.str();
     return match;

@@ -555,40 +555,6 @@ TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
 }
 
 
-TEST(tetsToPolyMesh, mapsLeadFromTetFacesAndTrianglesToPolyMeshFaces)
-{
-    const tetMesh m = kuhnGrid(2, 2, 1);
-    const std::vector<int> ranks = slabRanks(m, 2);
-    const rankInput in = makeRankInput(m, ranks, 0, boxRegion);
-    tetsToPolyMeshMaps maps;
-    const PolyMesh mesh = build(in, boxPatches(), 0, &maps);
-
-    ASSERT_EQ(maps.tetFaceToFace.size(), 4*in.tets.size());
-    ASSERT_EQ(maps.boundaryTriangleToFace.size(), in.tris.size());
-
-    auto sortedFace = [](triFace f) { std::sort(f.begin(), f.end()); return f; };
-    for (std::size_t t = 0; t < in.tets.size(); ++t)
-    {
-        for (int f = 0; f < 4; ++f)
-        {
-            const label facei = maps.tetFaceToFace[4*t + f];
-            ASSERT_GE(facei, 0);
-            EXPECT_EQ(sortedFace(mesh.faces[facei]), sortedFace(tetFace(in.tets[t], f)));
-            const bool isOwner = mesh.owner[facei] == label(t);
-            const bool isNeighbour =
-                facei < mesh.nInternalFaces() && mesh.neighbour[facei] == label(t);
-            EXPECT_TRUE(isOwner || isNeighbour);
-        }
-    }
-    for (std::size_t b = 0; b < in.tris.size(); ++b)
-    {
-        const label facei = maps.boundaryTriangleToFace[b];
-        ASSERT_GE(facei, mesh.nInternalFaces());
-        EXPECT_EQ(sortedFace(mesh.faces[facei]), sortedFace(in.tris[b]));
-    }
-}
-
-
 // * * * * * * * * * * * * * * * Error tests * * * * * * * * * * * * * * * //
 
 TEST(tetsToPolyMesh, boundaryTriangleNotOnATetIsAnError)
