@@ -32,19 +32,20 @@ void pmsh::broadcastCoarseMesh(const Communicator& comm, CoarseMesh& coarse)
     comm.broadcast(coarse.tets);
     comm.broadcast(coarse.boundary);
 
-    // Patch names as one '\0'-separated buffer
+    // Patch names as one '\0'-separated buffer (the types come from
+    // pmshDict, which every rank reads)
     std::vector<char> names;
-    for (const std::string& n : coarse.patchNames)
+    for (const meshPatch& p : coarse.patches)
     {
-        names.insert(names.end(), n.begin(), n.end());
+        names.insert(names.end(), p.name.begin(), p.name.end());
         names.push_back('\0');
     }
     comm.broadcast(names);
-    coarse.patchNames.clear();
+    coarse.patches.clear();
     for (auto it = names.begin(); it != names.end(); )
     {
         auto end = std::find(it, names.end(), '\0');
-        coarse.patchNames.emplace_back(it, end);
+        coarse.patches.push_back({std::string(it, end)});
         it = (end == names.end()) ? end : end + 1;
     }
 }

@@ -524,12 +524,6 @@ pmsh::stlGeometry::~stlGeometry() = default;
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
-const std::vector<std::string>& pmsh::stlGeometry::patchNames() const
-{
-    return impl_->surface.solidNames;
-}
-
-
 const pmsh::stlSurface& pmsh::stlGeometry::surface() const
 {
     return impl_->surface;
@@ -794,7 +788,10 @@ pmsh::CoarseMesh pmsh::stlGeometry::coarseMesh
 
     coarse.points = std::move(m.points);
     coarse.tets = std::move(m.tets);
-    coarse.patchNames = d.surface.solidNames;
+    for (const std::string& name : d.surface.solidNames)
+    {
+        coarse.patches.push_back({name});
+    }
 
     return coarse;
 }

@@ -3,6 +3,7 @@
 
 #include "processorPolyPatch.H"
 #include "labelIOList.H"
+#include "UPstream.H"
 
 #include <algorithm>
 #include <cstdlib>
@@ -57,12 +58,13 @@ Foam::autoPtr<Foam::fvMesh> pmsh::toFvMesh(const Foam::Time& time, PolyMesh&& me
     List<polyPatch*> patches(label(mesh.patches.size()));
     forAll(patches, i)
     {
-        const polyPatchInfo& p = mesh.patches[i];
+        const meshPatch& p = mesh.patches[i];
         if (p.isProcessor())
         {
             patches[i] = new processorPolyPatch
             (
-                p.size, p.start, i, fvm->boundaryMesh(), p.myProcNo, p.neighbProcNo
+                p.size, p.start, i, fvm->boundaryMesh(),
+                UPstream::myProcNo(), p.neighbProcNo
             );
         }
         else

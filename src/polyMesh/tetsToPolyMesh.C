@@ -23,7 +23,7 @@ void checkInput
     const std::vector<tetCell>& tets,
     const std::vector<triFace>& boundaryTriangles,
     const std::vector<label>& boundaryRegion,
-    const std::vector<polyPatchInfo>& physicalPatches,
+    const std::vector<meshPatch>& physicalPatches,
     label myProcNo,
     const std::vector<globalLabel>& globalPointIds
 )
@@ -65,7 +65,7 @@ void checkInput
     }
 
     std::unordered_set<std::string> names;
-    for (const polyPatchInfo& p : physicalPatches)
+    for (const meshPatch& p : physicalPatches)
     {
         if (p.isProcessor())
         {
@@ -240,7 +240,7 @@ void addPhysicalPatches
     const std::vector<tetCell>& tets,
     const std::vector<faceId>& across,
     const std::vector<label>& boundaryRegion,
-    const std::vector<polyPatchInfo>& physicalPatches
+    const std::vector<meshPatch>& physicalPatches
 )
 {
     const faceId nTetFaces = faceId(4*tets.size());
@@ -257,7 +257,7 @@ void addPhysicalPatches
 
     // Counting sort by patch: tet faces in id order stay in owner order
     mesh.patches = physicalPatches;
-    for (polyPatchInfo& p : mesh.patches)
+    for (meshPatch& p : mesh.patches)
     {
         p.size = 0;
     }
@@ -271,7 +271,7 @@ void addPhysicalPatches
     }
     std::vector<std::size_t> next;
     label start = mesh.nFaces();
-    for (polyPatchInfo& p : mesh.patches)
+    for (meshPatch& p : mesh.patches)
     {
         p.start = start;
         next.push_back(std::size_t(start));
@@ -347,11 +347,10 @@ void addProcessorPatches
         const bool newPatch = i == 0 || pf.neighbProcNo != faces[i - 1].neighbProcNo;
         if (newPatch)
         {
-            polyPatchInfo p;
+            meshPatch p;
             p.name = processorPatchName(myProcNo, pf.neighbProcNo);
             p.type = "processor";
             p.start = mesh.nFaces();
-            p.myProcNo = myProcNo;
             p.neighbProcNo = pf.neighbProcNo;
             mesh.patches.push_back(p);
         }
@@ -381,23 +380,13 @@ void addProcessorPatches
 } // End anonymous namespace
 
 
-// * * * * * * * * * * * * * * * Free functions  * * * * * * * * * * * * * //
-
-std::string pmsh::processorPatchName(label myProcNo, label neighbProcNo)
-{
-    return
-        "procBoundary" + std::to_string(myProcNo)
-      + "to" + std::to_string(neighbProcNo);
-}
-
-
 pmsh::PolyMesh pmsh::tetsToPolyMesh
 (
     std::vector<point>&& points,
     const std::vector<tetCell>& tets,
     const std::vector<triFace>& boundaryTriangles,
     const std::vector<label>& boundaryRegion,
-    const std::vector<polyPatchInfo>& physicalPatches,
+    const std::vector<meshPatch>& physicalPatches,
     label myProcNo,
     const std::vector<globalLabel>& globalPointIds
 )

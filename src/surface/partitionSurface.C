@@ -1,5 +1,5 @@
 #include "partitionSurface.H"
-#include "boundaryRegion.H"
+#include "meshPatch.H"
 #include "coarseMesh.H"
 
 pmsh::coarsePartSurface pmsh::partitionSurface

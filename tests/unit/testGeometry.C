@@ -29,6 +29,14 @@ namespace
 const std::string dataDir = std::string(PMSH_TEST_DATA) + "/geometry/";
 
 
+std::vector<std::string> patchNames(const CoarseMesh& m)
+{
+    std::vector<std::string> names;
+    for (const meshPatch& p : m.patches) names.push_back(p.name);
+    return names;
+}
+
+
 //- Checks every coarse mesh must pass; returns the enclosed volume.
 double checkCoarseMesh(const CoarseMesh& m)
 {
@@ -49,7 +57,7 @@ double checkCoarseMesh(const CoarseMesh& m)
     for (const auto& f : m.boundary)
     {
         EXPECT_GE(f.patch, 0);
-        EXPECT_LT(f.patch, label(m.patchNames.size()));
+        EXPECT_LT(f.patch, label(m.patches.size()));
         for (int k = 0; k < 3; ++k)
         {
             ++directed[{f.v[k], f.v[(k + 1) % 3]}];
@@ -263,8 +271,7 @@ TEST(csgGeometry, sphereCoarseMesh)
     const double v = checkCoarseMesh(m);
     EXPECT_NEAR(v, 4.0/3.0*M_PI, 0.15*4.0/3.0*M_PI);
 
-    ASSERT_EQ(m.patchNames, std::vector<std::string>{"wall"});
-    EXPECT_EQ(g->patchNames(), m.patchNames);
+    ASSERT_EQ(patchNames(m), std::vector<std::string>{"wall"});
     for (const auto& f : m.boundary)
     {
         EXPECT_EQ(f.patch, 0);
@@ -299,24 +306,22 @@ TEST(csgGeometry, sphereProjectionIsExactAndPure)
 TEST(csgGeometry, shaftPatchesAndEdgeProjection)
 {
     auto g = Geometry::New(dataDir + "shaft.geo");
-    EXPECT_FATAL(g->patchNames(), "known once its coarse mesh is generated");
-
     const CoarseMesh m = g->coarseMesh({0.4, 0.3});
     checkCoarseMesh(m);
 
-    std::set<std::string> names(m.patchNames.begin(), m.patchNames.end());
+    std::set<std::string> names;
+    for (const meshPatch& p : m.patches) names.insert(p.name);
     EXPECT_EQ
     (
         names,
         (std::set<std::string>{"inlet", "outlet", "shoulder", "shaftWall", "shoulderWall"})
     );
-    EXPECT_EQ(g->patchNames(), m.patchNames);
 
     // Each patch has faces, on the right place
     std::map<std::string, int> nFaces;
     for (const auto& f : m.boundary)
     {
-        const std::string& name = m.patchNames[f.patch];
+        const std::string& name = m.patches[f.patch].name;
         ++nFaces[name];
         for (label p : f.v)
         {
@@ -335,7 +340,7 @@ TEST(csgGeometry, shaftPatchesAndEdgeProjection)
     // side: its outward normal is -z (Netgen gives it DomainIn 0: flipped)
     for (const auto& f : m.boundary)
     {
-        if (m.patchNames[f.patch] == "shoulder")
+        if (m.patches[f.patch].name == "shoulder")
         {
             const vector n = cross
             (
@@ -394,7 +399,7 @@ TEST(csgGeometry, bcNumbersWithoutNames)
     auto g = Geometry::New(f);
     const CoarseMesh m = g->coarseMesh({0.5, 0.3});
     checkCoarseMesh(m);
-    EXPECT_EQ(m.patchNames, std::vector<std::string>{"patch3"});
+    EXPECT_EQ(patchNames(m), std::vector<std::string>{"patch3"});
     std::set<label> surfaces;
     for (const auto& b : m.boundary) surfaces.insert(b.surface);
     EXPECT_EQ(surfaces.size(), 6u);
@@ -620,8 +625,8 @@ TEST(stlGeometry, sphereAsciiAndBinaryGiveTheSameMesh)
     EXPECT_EQ(ma.nPoints(), mb.nPoints());
     EXPECT_EQ(ma.nCells(), mb.nCells());
     EXPECT_EQ(ma.boundary.size(), mb.boundary.size());
-    EXPECT_EQ(ma.patchNames, std::vector<std::string>{"sphere"});
-    EXPECT_EQ(mb.patchNames, std::vector<std::string>{"sphereBinary"});
+    EXPECT_EQ(patchNames(ma), std::vector<std::string>{"sphere"});
+    EXPECT_EQ(patchNames(mb), std::vector<std::string>{"sphereBinary"});
 
     const double v = checkCoarseMesh(ma);
     EXPECT_NEAR(v, 4.0/3.0*M_PI, 0.15*4.0/3.0*M_PI);
@@ -647,14 +652,14 @@ TEST(stlGeometry, boxPatchesAndRegions)
 {
     auto g = Geometry::New(dataDir + "box.stl");
     const stlGeometry& sg = dynamic_cast<const stlGeometry&>(*g);
-    EXPECT_EQ(g->patchNames(), (std::vector<std::string>{"inlet", "walls"}));
+    EXPECT_EQ(sg.surface().solidNames, (std::vector<std::string>{"inlet", "walls"}));
     EXPECT_EQ(sg.nRegions(), 6);        // the six sides
     EXPECT_EQ(sg.featureEdges().size(), 12u*2u);  // 12 box edges, 2 segments each
 
     const CoarseMesh m = g->coarseMesh({0.3, 0.3});
     const double v = checkCoarseMesh(m);
     EXPECT_NEAR(v, 2.0, 1e-9);
-    EXPECT_EQ(m.patchNames, (std::vector<std::string>{"inlet", "walls"}));
+    EXPECT_EQ(patchNames(m), (std::vector<std::string>{"inlet", "walls"}));
 
     std::map<label, std::set<label>> patchSurfaces;
     for (const auto& f : m.boundary)
@@ -689,8 +694,8 @@ TEST(stlGeometry, coplanarSolidsKeepTheirBoundary)
     const tempDir dir("geometry");
     const std::string f = dir.file("duct.stl", cubeWithInlet(4, 0.25, 0.75));
     auto g = Geometry::New(f);
-    EXPECT_EQ(g->patchNames(), (std::vector<std::string>{"inlet", "walls"}));
     const stlGeometry& sg = dynamic_cast<const stlGeometry&>(*g);
+    EXPECT_EQ(sg.surface().solidNames, (std::vector<std::string>{"inlet", "walls"}));
     EXPECT_EQ(sg.nRegions(), 7);
 
     const CoarseMesh m = g->coarseMesh({0.2, 0.3});
@@ -698,7 +703,7 @@ TEST(stlGeometry, coplanarSolidsKeepTheirBoundary)
     double inletArea = 0;
     for (const auto& f : m.boundary)
     {
-        if (m.patchNames[f.patch] != "inlet") continue;
+        if (m.patches[f.patch].name != "inlet") continue;
         for (label p : f.v)
         {
             const point& x = m.points[p];

@@ -72,9 +72,9 @@ tetMesh kuhnGrid(int nx, int ny, int nz)
 
 //- Physical patches used with the box meshes: the six sides, and an empty
 //  patch in the middle that no triangle uses.
-std::vector<polyPatchInfo> boxPatches()
+std::vector<meshPatch> boxPatches()
 {
-    std::vector<polyPatchInfo> patches(7);
+    std::vector<meshPatch> patches(7);
     const char* names[] = {"xMin", "xMax", "yMin", "nothing", "yMax", "zMin", "zMax"};
     for (int i = 0; i < 7; ++i)
     {
@@ -174,7 +174,7 @@ void expectValidPolyMesh(const PolyMesh& mesh, const std::vector<tetCell>& tets)
 
     // Patches: contiguous from nInternalFaces, in order, covering all faces
     label start = nInt;
-    for (const polyPatchInfo& pp : mesh.patches)
+    for (const meshPatch& pp : mesh.patches)
     {
         EXPECT_EQ(pp.start, start) << pp.name;
         EXPECT_GE(pp.size, 0) << pp.name;
@@ -198,7 +198,7 @@ void expectBoxPatchesByGeometry(const PolyMesh& mesh, std::size_t nPhysical)
     }
     for (std::size_t pi = 0; pi < nPhysical; ++pi)
     {
-        const polyPatchInfo& pp = mesh.patches[pi];
+        const meshPatch& pp = mesh.patches[pi];
         for (label f = pp.start; f < pp.start + pp.size; ++f)
         {
             const triFace& face = mesh.faces[f];
@@ -284,7 +284,7 @@ TEST(tetsToPolyMesh, twoTetsShareOneFaceOrientedFromLowerToHigherCell)
 {
     const tetMesh m = twoTets();
     rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    std::vector<polyPatchInfo> patches(1);
+    std::vector<meshPatch> patches(1);
     patches[0].name = "walls";
     for (label& r : in.regions)
     {
@@ -357,7 +357,7 @@ TEST(tetsToPolyMesh, physicalPatchFacesAreOrderedByOwner)
     const rankInput in = makeRankInput(m, {}, 0, boxRegion);
     const PolyMesh mesh = build(in, boxPatches());
 
-    for (const polyPatchInfo& pp : mesh.patches)
+    for (const meshPatch& pp : mesh.patches)
     {
         for (label f = pp.start + 1; f < pp.start + pp.size; ++f)
         {
@@ -393,7 +393,7 @@ TEST(tetsToPolyMesh, serialMeshHasNoProcessorPatches)
 {
     const rankInput in = makeRankInput(kuhnGrid(2, 1, 1), {}, 0, boxRegion);
     const PolyMesh mesh = build(in, boxPatches());
-    for (const polyPatchInfo& pp : mesh.patches)
+    for (const meshPatch& pp : mesh.patches)
     {
         EXPECT_FALSE(pp.isProcessor()) << pp.name;
     }
@@ -417,10 +417,9 @@ TEST(tetsToPolyMesh, twoRankCubeHasProcessorPatchesAfterPhysicalOnes)
         {
             EXPECT_EQ(mesh.patches[i].name, boxPatches()[i].name);
         }
-        const polyPatchInfo& pp = mesh.patches[7];
+        const meshPatch& pp = mesh.patches[7];
         EXPECT_EQ(pp.name, rank == 0 ? "procBoundary0to1" : "procBoundary1to0");
         EXPECT_EQ(pp.type, "processor");
-        EXPECT_EQ(pp.myProcNo, rank);
         EXPECT_EQ(pp.neighbProcNo, 1 - rank);
         EXPECT_GT(pp.size, 0);
     }
@@ -499,7 +498,7 @@ TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
         std::size_t nChecked = 0;
         for (int a = 0; a < tc.nRanks; ++a)
         {
-            for (const polyPatchInfo& pa : mesh[a].patches)
+            for (const meshPatch& pa : mesh[a].patches)
             {
                 if (!pa.isProcessor())
                 {
@@ -509,7 +508,7 @@ TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
                 const auto pb = std::find_if
                 (
                     mesh[b].patches.begin(), mesh[b].patches.end(),
-                    [&](const polyPatchInfo& p) { return p.name == processorPatchName(b, a); }
+                    [&](const meshPatch& p) { return p.name == processorPatchName(b, a); }
                 );
                 ASSERT_NE(pb, mesh[b].patches.end()) << "case " << ci;
                 ASSERT_EQ(pa.size, pb->size) << "case " << ci << ' ' << pa.name;
@@ -661,7 +660,7 @@ TEST(tetsToPolyMesh, duplicateTetIsAnError)
 TEST(tetsToPolyMesh, physicalPatchOfTypeProcessorIsAnError)
 {
     rankInput in = makeRankInput(singleTet(), {}, 0, boxRegion);
-    std::vector<polyPatchInfo> patches = boxPatches();
+    std::vector<meshPatch> patches = boxPatches();
     patches[6].type = "processor";
     const std::string e = errorOf([&]() { build(in, patches); });
     EXPECT_NE(e.find("type processor"), std::string::npos) << e;
