@@ -234,7 +234,7 @@ int main(int argc, char *argv[])
             "Stage 6: writing " + std::string(IOstream::formatNames[runTime.writeFormat()])
           + " through the " + std::string(fileHandler().type()) + " fileHandler"
         );
-        pmsh::PolyMesh rankMesh;
+        pmsh::tetPolyMesh rankMesh;
         pmsh::failTogether(comm, [&]
         {
             rankMesh = pmsh::tetsToPolyMesh

@@ -1,4 +1,5 @@
 #include "coarseMesh.H"
+#include "Geometry.H"
 #include "pmshError.H"
 #include "failTogether.H"
 #include "tetFaceMatching.H"

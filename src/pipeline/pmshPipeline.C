@@ -137,7 +137,7 @@ pmsh::globalLabel pmsh::logVolumeMeshing
 }
 
 
-pmsh::meshSizes pmsh::meshSizesOf(const Communicator&, const PolyMesh& mesh)
+pmsh::meshSizes pmsh::meshSizesOf(const Communicator&, const tetPolyMesh& mesh)
 {
     return {double(mesh.nFaces()), double(mesh.points.size())};
 }

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cstdlib>
 
-Foam::autoPtr<Foam::fvMesh> pmsh::toFvMesh(const Foam::Time& time, PolyMesh&& mesh)
+Foam::autoPtr<Foam::fvMesh> pmsh::toFvMesh(const Foam::Time& time, tetPolyMesh&& mesh)
 {
     using namespace Foam;
 

@@ -7,7 +7,7 @@
 pmsh::procAddressing pmsh::buildProcAddressing
 (
     const Communicator& comm,
-    const PolyMesh& mesh,
+    const tetPolyMesh& mesh,
     const std::vector<globalLabel>& globalPointIds
 )
 {

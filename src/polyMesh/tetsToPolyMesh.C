@@ -198,7 +198,7 @@ void checkInput
 //  outward from its owner (towards the neighbour).
 void addInternalFaces
 (
-    PolyMesh& mesh,
+    tetPolyMesh& mesh,
     const std::vector<tetCell>& tets,
     const std::vector<faceId>& across
 )
@@ -236,7 +236,7 @@ void addInternalFaces
 //  here), their faces ordered by (owner, local tet face) and outward.
 void addPhysicalPatches
 (
-    PolyMesh& mesh,
+    tetPolyMesh& mesh,
     const std::vector<tetCell>& tets,
     const std::vector<faceId>& across,
     const std::vector<label>& boundaryRegion,
@@ -299,7 +299,7 @@ void addPhysicalPatches
 //  other side's face is then OpenFOAM's reverseFace.
 void addProcessorPatches
 (
-    PolyMesh& mesh,
+    tetPolyMesh& mesh,
     const std::vector<tetCell>& tets,
     const std::vector<faceId>& across,
     const std::vector<label>& boundaryRegion,
@@ -380,7 +380,7 @@ void addProcessorPatches
 } // End anonymous namespace
 
 
-pmsh::PolyMesh pmsh::tetsToPolyMesh
+pmsh::tetPolyMesh pmsh::tetsToPolyMesh
 (
     std::vector<point>&& points,
     const std::vector<tetCell>& tets,
@@ -408,7 +408,7 @@ pmsh::PolyMesh pmsh::tetsToPolyMesh
         );
     }
 
-    PolyMesh mesh;
+    tetPolyMesh mesh;
     mesh.points = std::move(points);
     mesh.nCells = label(tets.size());
 

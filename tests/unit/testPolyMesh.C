@@ -100,8 +100,8 @@ label boxRegion(const point& c, const point& lo, const point& hi)
 }
 
 
-//- Every OpenFOAM ordering and orientation rule, checked on a PolyMesh.
-void expectValidPolyMesh(const PolyMesh& mesh, const std::vector<tetCell>& tets)
+//- Every OpenFOAM ordering and orientation rule, checked on a tetPolyMesh.
+void expectValidPolyMesh(const tetPolyMesh& mesh, const std::vector<tetCell>& tets)
 {
     const auto& p = mesh.points;
     const label nInt = mesh.nInternalFaces();
@@ -185,7 +185,7 @@ void expectValidPolyMesh(const PolyMesh& mesh, const std::vector<tetCell>& tets)
 
 
 //- Patch of each face's region, checked by the face centroid.
-void expectBoxPatchesByGeometry(const PolyMesh& mesh, std::size_t nPhysical)
+void expectBoxPatchesByGeometry(const tetPolyMesh& mesh, std::size_t nPhysical)
 {
     point lo = mesh.points[0], hi = mesh.points[0];
     for (const point& p : mesh.points)
@@ -270,7 +270,7 @@ TEST(tetsToPolyMesh, singleTetHasFourOutwardBoundaryFaces)
 {
     const tetMesh m = singleTet();
     const rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
+    const tetPolyMesh mesh = build(in, boxPatches());
 
     EXPECT_EQ(mesh.nCells, 1);
     EXPECT_EQ(mesh.nFaces(), 4);
@@ -290,7 +290,7 @@ TEST(tetsToPolyMesh, twoTetsShareOneFaceOrientedFromLowerToHigherCell)
     {
         r = 0;
     }
-    const PolyMesh mesh = build(in, patches);
+    const tetPolyMesh mesh = build(in, patches);
 
     ASSERT_EQ(mesh.nInternalFaces(), 1);
     EXPECT_EQ(mesh.nFaces(), 7);
@@ -306,7 +306,7 @@ TEST(tetsToPolyMesh, fiveTetCubeIsValid)
 {
     const tetMesh m = fiveTetCube();
     const rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
+    const tetPolyMesh mesh = build(in, boxPatches());
 
     EXPECT_EQ(mesh.nInternalFaces(), 4);
     EXPECT_EQ(mesh.nFaces(), 16);
@@ -319,7 +319,7 @@ TEST(tetsToPolyMesh, sixTetCubeHasTwoFacesPerSideAndEmptyPatchKept)
 {
     const tetMesh m = kuhnGrid(1, 1, 1);
     const rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
+    const tetPolyMesh mesh = build(in, boxPatches());
 
     EXPECT_EQ(mesh.nCells, 6);
     EXPECT_EQ(mesh.nInternalFaces(), 6);
@@ -343,7 +343,7 @@ TEST(tetsToPolyMesh, gridIsUpperTriangularAndOriented)
 {
     const tetMesh m = kuhnGrid(3, 2, 2);
     const rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
+    const tetPolyMesh mesh = build(in, boxPatches());
 
     expectValidPolyMesh(mesh, in.tets);
     expectBoxPatchesByGeometry(mesh, 7);
@@ -355,7 +355,7 @@ TEST(tetsToPolyMesh, physicalPatchFacesAreOrderedByOwner)
 {
     const tetMesh m = kuhnGrid(2, 2, 2);
     const rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
+    const tetPolyMesh mesh = build(in, boxPatches());
 
     for (const meshPatch& pp : mesh.patches)
     {
@@ -372,7 +372,7 @@ TEST(tetsToPolyMesh, resultDoesNotDependOnBoundaryTriangleOrder)
     const tetMesh m = kuhnGrid(2, 2, 1);
     const std::vector<int> ranks = slabRanks(m, 2);
     rankInput in = makeRankInput(m, ranks, 1, boxRegion);
-    const PolyMesh a = build(in, boxPatches(), 1);
+    const tetPolyMesh a = build(in, boxPatches(), 1);
 
     // Reverse and rotate the triangles: same mesh expected
     std::reverse(in.tris.begin(), in.tris.end());
@@ -381,7 +381,7 @@ TEST(tetsToPolyMesh, resultDoesNotDependOnBoundaryTriangleOrder)
     {
         t = {t[1], t[2], t[0]};
     }
-    const PolyMesh b = build(in, boxPatches(), 1);
+    const tetPolyMesh b = build(in, boxPatches(), 1);
 
     EXPECT_EQ(a.faces, b.faces);
     EXPECT_EQ(a.owner, b.owner);
@@ -392,7 +392,7 @@ TEST(tetsToPolyMesh, resultDoesNotDependOnBoundaryTriangleOrder)
 TEST(tetsToPolyMesh, serialMeshHasNoProcessorPatches)
 {
     const rankInput in = makeRankInput(kuhnGrid(2, 1, 1), {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
+    const tetPolyMesh mesh = build(in, boxPatches());
     for (const meshPatch& pp : mesh.patches)
     {
         EXPECT_FALSE(pp.isProcessor()) << pp.name;
@@ -409,7 +409,7 @@ TEST(tetsToPolyMesh, twoRankCubeHasProcessorPatchesAfterPhysicalOnes)
     for (int rank = 0; rank < 2; ++rank)
     {
         const rankInput in = makeRankInput(m, ranks, rank, boxRegion);
-        const PolyMesh mesh = build(in, boxPatches(), rank);
+        const tetPolyMesh mesh = build(in, boxPatches(), rank);
         expectValidPolyMesh(mesh, in.tets);
 
         ASSERT_EQ(mesh.patches.size(), 8u) << "rank " << rank;
@@ -448,7 +448,7 @@ TEST(tetsToPolyMesh, processorPatchesAreInAscendingNeighbourRank)
     }
     ASSERT_EQ(sorted.regions.front(), interfaceRegion(2));
 
-    const PolyMesh mesh = build(sorted, boxPatches(), 1);
+    const tetPolyMesh mesh = build(sorted, boxPatches(), 1);
     expectValidPolyMesh(mesh, sorted.tets);
     expectBoxPatchesByGeometry(mesh, 7);
 
@@ -487,7 +487,7 @@ TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
     {
         const testCase& tc = cases[ci];
         std::vector<rankInput> in;
-        std::vector<PolyMesh> mesh;
+        std::vector<tetPolyMesh> mesh;
         for (int r = 0; r < tc.nRanks; ++r)
         {
             in.push_back(makeRankInput(tc.m, tc.ranks, r, boxRegion));
