@@ -128,7 +128,7 @@ void expectUniqueAndContiguous
             ADD_FAILURE() << "number " << numbers[p] << " of point " << p << " is out of range";
             continue;
         }
-        std::array<long long, nKey> key{-1 - rank, (long long)(p), 0, 0, 0, 0};
+        std::array<long long, nKey> key{-1 - rank, static_cast<long long>(p), 0, 0, 0, 0};
         if (p < surface.points.size())
         {
             const barycentricId& id = surface.ids[p];
@@ -140,8 +140,13 @@ void expectUniqueAndContiguous
             largest[nKey*n + k] = std::max(largest[nKey*n + k], key[k]);
         }
     }
-    MPI_Allreduce(MPI_IN_PLACE, smallest.data(), int(smallest.size()), MPI_LONG_LONG, MPI_MIN, MPI_COMM_WORLD);
-    MPI_Allreduce(MPI_IN_PLACE, largest.data(), int(largest.size()), MPI_LONG_LONG, MPI_MAX, MPI_COMM_WORLD);
+    auto allReduce = [](std::vector<long long>& v, MPI_Op op)
+    {
+        const std::vector<long long> mine = v;
+        MPI_Allreduce(mine.data(), v.data(), int(v.size()), MPI_LONG_LONG, op, MPI_COMM_WORLD);
+    };
+    allReduce(smallest, MPI_MIN);
+    allReduce(largest, MPI_MAX);
 
     for (globalLabel n = 0; n < nGlobal; ++n)
     {
