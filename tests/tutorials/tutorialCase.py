@@ -138,7 +138,8 @@ class PolyMeshFiles:
 
     def _list(self, body, binary, item_bytes, fmt, parse_ascii, offset=0):
         """Read one list at byte offset; returns (items, end offset)."""
-        m = re.compile(rb"\s*(\d+)\s*").match(body, offset)
+        # OpenFOAM's writers put a "// * * *" line between header and data
+        m = re.compile(rb"(?:\s*//[^\n]*\n)*\s*(\d+)\s*").match(body, offset)
         n = int(m.group(1))
         pos = m.end()
         if binary:
