@@ -221,19 +221,18 @@ int main(int argc, char *argv[])
         pmsh::stageLog stages(comm);
 
         stages.begin("coarse", "Stage 1: coarse mesh (Netgen) of " + settings.geometryFile);
-        const pmsh::CoarseMesh coarse = pmsh::generateCoarseMesh
+        pmsh::CoarseMesh coarse = pmsh::generateCoarseMesh
         (
             comm, *geometry, {settings.maxCellSize, settings.grading}
         );
+        pmsh::setPatchTypes(coarse, settings);
         pmsh::logCoarseMesh(coarse);
-        const std::vector<pmsh::polyPatchInfo> patches =
-            pmsh::physicalPatches(coarse, settings);
         pmsh::failTogether(comm, [&]
         {
             // Stop before the expensive stages if the fine mesh cannot fit
             pmsh::checkMemoryEstimate(comm, settings, coarse.nCells());
             // The patches are known now: every field must cover them all
-            pmsh::checkPatchCoverage(fieldTemplates, patches);
+            pmsh::checkPatchCoverage(fieldTemplates, coarse.patches);
         });
         stages.end();
 
@@ -269,7 +268,8 @@ int main(int argc, char *argv[])
         {
             volume = pmsh::meshPartitionVolume
             (
-                settings.volumeMesher, surface.points, surface.triangles,
+                pmsh::VolumeMesher::NewAll(settings.volumeMesher),
+                surface.points, surface.triangles,
                 pmsh::volumeParameters(settings, comm.rank()), comm.rank(),
                 pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank())
             );
@@ -291,14 +291,14 @@ int main(int argc, char *argv[])
             "Stage 6: writing " + std::string(IOstream::formatNames[runTime.writeFormat()])
           + " through the " + std::string(outputFileHandler) + " fileHandler"
         );
-        pmsh::PolyMesh rankMesh;
+        pmsh::tetPolyMesh rankMesh;
         pmsh::failTogether(comm, [&]
         {
             rankMesh = pmsh::tetsToPolyMesh
             (
                 std::move(tets.points), tets.tets,
                 surface.triangles, surface.region,
-                patches, comm.parallel() ? comm.rank() : -1,
+                coarse.patches, comm.parallel() ? comm.rank() : -1,
                 numbering.globalIds()
             );
             tets = pmsh::TetMesh();

@@ -1,63 +1,48 @@
 #include "surfaceTopology.H"
 
+#include "matchByPoints.H"
+
 #include <algorithm>
-#include <tuple>
 
 pmsh::surfaceEdgeDefects pmsh::findSurfaceEdgeDefects
 (
     const std::vector<triFace>& triangles
 )
 {
-    // Directed edge uses sorted by their undirected key: one flat sort
-    struct edgeUse
+    // Edge k of triangle t, directed as the triangle goes round, is 3*t + k
+    auto edgeOf = [&](matchId id)
     {
-        label lo, hi;
-        bool forward;   // lo -> hi
-
-        bool operator<(const edgeUse& o) const
-        {
-            return std::tie(lo, hi, forward) < std::tie(o.lo, o.hi, o.forward);
-        }
+        const triFace& f = triangles[id/3];
+        return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
     };
-    std::vector<edgeUse> uses;
-    uses.reserve(3*triangles.size());
+    label nPoints = 0;
     for (const triFace& f : triangles)
     {
-        for (int k = 0; k < 3; ++k)
-        {
-            const label a = f[k];
-            const label b = f[(k + 1) % 3];
-            uses.push_back({std::min(a, b), std::max(a, b), a < b});
-        }
+        nPoints = std::max({nPoints, f[0] + 1, f[1] + 1, f[2] + 1});
     }
-    std::sort(uses.begin(), uses.end());
 
     surfaceEdgeDefects d;
-    for (std::size_t i = 0; i < uses.size(); )
-    {
-        std::size_t j = i;
-        int nForward = 0;
-        while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi)
+    forEachSamePointsGroup
+    (
+        std::size_t(nPoints), matchId(3*triangles.size()), edgeOf,
+        [&](const matchId* ids, std::size_t n)
         {
-            nForward += uses[j].forward;
-            ++j;
+            const auto e = sortedPoints(edgeOf(ids[0]));
+            const std::pair<label, label> edge{e[0], e[1]};
+            if (n == 1)
+            {
+                if (!d.nOpen++) d.firstOpen = edge;
+            }
+            else if (n > 2)
+            {
+                if (!d.nNonManifold++) d.firstNonManifold = edge;
+            }
+            else if (edgeOf(ids[0]) == edgeOf(ids[1]))
+            {
+                if (!d.nInconsistent++) d.firstInconsistent = edge;
+            }
         }
-        const std::pair<label, label> edge{uses[i].lo, uses[i].hi};
-        const std::size_t n = j - i;
-        if (n == 1)
-        {
-            if (!d.nOpen++) d.firstOpen = edge;
-        }
-        else if (n > 2)
-        {
-            if (!d.nNonManifold++) d.firstNonManifold = edge;
-        }
-        else if (nForward != 1)
-        {
-            if (!d.nInconsistent++) d.firstInconsistent = edge;
-        }
-        i = j;
-    }
+    );
     return d;
 }
 

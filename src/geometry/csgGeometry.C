@@ -110,24 +110,6 @@ pmsh::csgGeometry::~csgGeometry() = default;
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
-const std::vector<std::string>& pmsh::csgGeometry::patchNames() const
-{
-    if (!meshed_)
-    {
-        throw FatalError
-        (
-            msg()
-                << "The patch names of CSG geometry \"" << fileName_ << "\""
-                << " are known once its coarse mesh is generated (Netgen"
-                << " numbers unnamed faces while meshing): use the coarse"
-                << " mesh's patchNames",
-            "pmsh::csgGeometry::patchNames"
-        );
-    }
-    return patchNames_;
-}
-
-
 pmsh::label pmsh::csgGeometry::nSurfaces() const
 {
     return model_->nSurfaces();
@@ -168,7 +150,7 @@ pmsh::CoarseMesh pmsh::csgGeometry::coarseMesh
 
     // One patch per name, ordered by the smallest bc number with that name
     // (the map iterates bc numbers in increasing order)
-    std::vector<std::string> names;
+    CoarseMesh coarse;
     std::map<std::string, label> nameIndex;
     std::map<label, label> bcPatch;
     for (const auto& bp : bcPatchName)
@@ -176,13 +158,12 @@ pmsh::CoarseMesh pmsh::csgGeometry::coarseMesh
         auto it = nameIndex.find(bp.second);
         if (it == nameIndex.end())
         {
-            it = nameIndex.emplace(bp.second, label(names.size())).first;
-            names.push_back(bp.second);
+            it = nameIndex.emplace(bp.second, label(coarse.patches.size())).first;
+            coarse.patches.push_back({bp.second});
         }
         bcPatch[bp.first] = it->second;
     }
 
-    CoarseMesh coarse;
     coarse.points = std::move(m.points);
     coarse.tets = std::move(m.tets);
     coarse.boundary.reserve(m.boundary.size());
@@ -190,11 +171,6 @@ pmsh::CoarseMesh pmsh::csgGeometry::coarseMesh
     {
         coarse.boundary.push_back({b.v, bcPatch.at(b.bc), b.surface});
     }
-    coarse.patchNames = names;
-
-    patchNames_ = names;
-    meshed_ = true;
-
     return coarse;
 }
 

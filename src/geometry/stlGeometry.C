@@ -6,6 +6,7 @@
 #include "stlGeometry.H"
 #include "netgenInterface.H"
 #include "pmshError.H"
+#include "matchByPoints.H"
 
 #include <algorithm>
 #include <cmath>
@@ -402,55 +403,40 @@ pmsh::stlGeometry::stlGeometry(const std::string& fileName)
         normal[t] = (1/std::sqrt(magSqr(n)))*n;
     }
 
-    // Edges with their two triangles (checkStl: closed and manifold)
-    struct edge
-    {
-        label lo, hi, tri;
-    };
-    std::vector<edge> edges;
-    edges.reserve(3*std::size_t(nt));
-    for (label t = 0; t < nt; ++t)
-    {
-        const triFace& f = s.triangles[t];
-        for (int k = 0; k < 3; ++k)
-        {
-            const label a = f[k];
-            const label b = f[(k + 1) % 3];
-            edges.push_back({std::min(a, b), std::max(a, b), t});
-        }
-    }
-    std::sort
-    (
-        edges.begin(), edges.end(),
-        [](const edge& x, const edge& y)
-        {
-            return x.lo != y.lo ? x.lo < y.lo
-                 : x.hi != y.hi ? x.hi < y.hi
-                 : x.tri < y.tri;
-        }
-    );
-
-    // Triangle neighbours across non-feature edges, and the feature edges
+    // Triangle neighbours across non-feature edges, and the feature edges.
+    // Edge k of triangle t is 3*t + k; each is shared by two triangles
+    // (checkStl: closed and manifold)
     const double cosFeature = std::cos(featureAngle*M_PI/180.0);
     std::vector<std::array<label, 3>> smoothNeighbour(nt, {-1, -1, -1});
     std::vector<int> nSmooth(nt, 0);
-    for (std::size_t i = 0; i + 1 < edges.size(); i += 2)
+    std::vector<std::array<label, 2>> featureEdgeTriangles;
+    auto edgeOf = [&](matchId id)
     {
-        const label t1 = edges[i].tri;
-        const label t2 = edges[i + 1].tri;
-        const bool feature =
-            s.solid[t1] != s.solid[t2]
-         || dot(normal[t1], normal[t2]) < cosFeature;
-        if (feature)
+        const triFace& f = s.triangles[id/3];
+        return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
+    };
+    forEachSamePointsGroup
+    (
+        s.points.size(), matchId(3*nt), edgeOf,
+        [&](const matchId* ids, std::size_t)
         {
-            d.featureEdges.push_back({edges[i].lo, edges[i].hi});
+            const label t1 = label(ids[0]/3);
+            const label t2 = label(ids[1]/3);
+            const bool feature =
+                s.solid[t1] != s.solid[t2]
+             || dot(normal[t1], normal[t2]) < cosFeature;
+            if (feature)
+            {
+                d.featureEdges.push_back(sortedPoints(edgeOf(ids[0])));
+                featureEdgeTriangles.push_back({t1, t2});
+            }
+            else
+            {
+                smoothNeighbour[t1][nSmooth[t1]++] = t2;
+                smoothNeighbour[t2][nSmooth[t2]++] = t1;
+            }
         }
-        else
-        {
-            smoothNeighbour[t1][nSmooth[t1]++] = t2;
-            smoothNeighbour[t2][nSmooth[t2]++] = t1;
-        }
-    }
+    );
 
     // Regions: flood fill across smooth edges, seeded in triangle order
     d.region.assign(nt, -1);
@@ -498,15 +484,16 @@ pmsh::stlGeometry::stlGeometry(const std::string& fileName)
         }
     }
 
-    // Original edges between two regions, with a tree per region pair
-    for (std::size_t i = 0; i + 1 < edges.size(); i += 2)
+    // Original edges between two regions (feature edges all), with a tree
+    // per region pair
+    for (std::size_t i = 0; i < d.featureEdges.size(); ++i)
     {
-        const label r1 = d.region[edges[i].tri];
-        const label r2 = d.region[edges[i + 1].tri];
+        const label r1 = d.region[featureEdgeTriangles[i][0]];
+        const label r2 = d.region[featureEdgeTriangles[i][1]];
         if (r1 != r2)
         {
             d.regionEdges[{std::min(r1, r2), std::max(r1, r2)}]
-                .segments.push_back({edges[i].lo, edges[i].hi});
+                .segments.push_back(d.featureEdges[i]);
         }
     }
     for (auto& re : d.regionEdges)
@@ -536,12 +523,6 @@ pmsh::stlGeometry::~stlGeometry() = default;
 
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
-
-const std::vector<std::string>& pmsh::stlGeometry::patchNames() const
-{
-    return impl_->surface.solidNames;
-}
-
 
 const pmsh::stlSurface& pmsh::stlGeometry::surface() const
 {
@@ -807,7 +788,10 @@ pmsh::CoarseMesh pmsh::stlGeometry::coarseMesh
 
     coarse.points = std::move(m.points);
     coarse.tets = std::move(m.tets);
-    coarse.patchNames = d.surface.solidNames;
+    for (const std::string& name : d.surface.solidNames)
+    {
+        coarse.patches.push_back({name});
+    }
 
     return coarse;
 }

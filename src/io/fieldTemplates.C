@@ -97,7 +97,7 @@ std::vector<pmsh::fieldTemplate> pmsh::readFieldTemplates(const Foam::Time& runT
 void pmsh::checkPatchCoverage
 (
     const std::vector<fieldTemplate>& fields,
-    const std::vector<polyPatchInfo>& physicalPatches
+    const std::vector<meshPatch>& physicalPatches
 )
 {
     using namespace Foam;
@@ -105,7 +105,7 @@ void pmsh::checkPatchCoverage
     for (const fieldTemplate& field : fields)
     {
         const dictionary& bf = field.dict.subDict("boundaryField");
-        for (const polyPatchInfo& patch : physicalPatches)
+        for (const meshPatch& patch : physicalPatches)
         {
             // As OpenFOAM matches: name, group (a patch's group is its
             // constraint or wall type), regular expression

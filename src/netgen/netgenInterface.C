@@ -42,7 +42,7 @@
 
 #include "netgenInterface.H"
 #include "pmshError.H"
-#include "surfaceTopology.H"
+#include "tetFaceMatching.H"
 
 #include <algorithm>
 #include <cmath>
@@ -253,123 +253,24 @@ void makeTetsPositive(pmsh::ng::volumeMesh& m, const std::string& what)
 }
 
 
-//- Rotate a triangle so that its smallest index comes first (keeps the
-//  orientation): equal after this means the same oriented triangle.
-pmsh::triFace rotateMinFirst(const pmsh::triFace& f)
-{
-    if (f[1] < f[0] && f[1] < f[2])
-    {
-        return {f[1], f[2], f[0]};
-    }
-    if (f[2] < f[0] && f[2] < f[1])
-    {
-        return {f[2], f[0], f[1]};
-    }
-    return f;
-}
-
-
-//- Check the converted mesh: tet faces meet in pairs or lie on the
-//  boundary, and the boundary triangles are exactly the unpaired tet
-//  faces, each with its tet's outward orientation.
+//- Check the converted mesh: the boundary triangles are exactly the tet
+//  faces on no other tet, each outward from its tet.
 void checkBoundary(const pmsh::ng::volumeMesh& m, const std::string& what)
 {
     using namespace pmsh;
-
-    // Outward faces of a positive tet (a, b, c, d)
-    static const int tetFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-
-    struct faceRef
+    std::vector<triFace> boundary(m.boundary.size());
+    for (std::size_t b = 0; b < boundary.size(); ++b)
     {
-        triFace key;        // sorted
-        triFace oriented;   // outward, rotated min-first
-        std::int64_t owner; // tet index, or -1 - boundary triangle index
-    };
-
-    std::vector<faceRef> faces;
-    faces.reserve(4*m.tets.size() + m.boundary.size());
-    for (std::size_t t = 0; t < m.tets.size(); ++t)
-    {
-        for (const auto& lf : tetFaces)
-        {
-            const triFace f{m.tets[t][lf[0]], m.tets[t][lf[1]], m.tets[t][lf[2]]};
-            triFace key = f;
-            std::sort(key.begin(), key.end());
-            faces.push_back({key, rotateMinFirst(f), std::int64_t(t)});
-        }
+        boundary[b] = m.boundary[b].v;
     }
-    for (std::size_t b = 0; b < m.boundary.size(); ++b)
-    {
-        const triFace& f = m.boundary[b].v;
-        triFace key = f;
-        std::sort(key.begin(), key.end());
-        faces.push_back({key, rotateMinFirst(f), -1 - std::int64_t(b)});
-    }
-    std::sort
-    (
-        faces.begin(), faces.end(),
-        [](const faceRef& a, const faceRef& b)
-        {
-            return a.key != b.key ? a.key < b.key : a.owner > b.owner;
-        }
-    );
-
-    auto fail = [&](const std::string& problem, const triFace& key)
+    const tetFaceMatch match = matchTetFaces(m.points.size(), m.tets, boundary);
+    if (!match.fits())
     {
         throw FatalError
         (
-            msg()
-                << "Netgen's mesh of " << what << " is inconsistent: "
-                << problem << ", at the face with points "
-                << str(m.points[key[0]]) << ' ' << str(m.points[key[1]]) << ' '
-                << str(m.points[key[2]]),
+            msg() << "Netgen's mesh of " << what << " is inconsistent:" << match.problems,
             "pmsh::ng::checkBoundary"
         );
-    };
-
-    for (std::size_t i = 0; i < faces.size(); )
-    {
-        std::size_t j = i;
-        int nTet = 0;
-        int nBoundary = 0;
-        while (j < faces.size() && faces[j].key == faces[i].key)
-        {
-            (faces[j].owner >= 0 ? nTet : nBoundary)++;
-            ++j;
-        }
-        // Tets sort first (owner >= 0 before negative owners)
-        if (nTet == 2 && nBoundary == 0)
-        {
-            if (faces[i].oriented == faces[i + 1].oriented)
-            {
-                fail("two tets on the same side of a face", faces[i].key);
-            }
-        }
-        else if (nTet == 1 && nBoundary == 1)
-        {
-            if (faces[i].oriented != faces[i + 1].oriented)
-            {
-                fail("a boundary face points into the domain", faces[i].key);
-            }
-        }
-        else if (nTet == 1 && nBoundary == 0)
-        {
-            fail("a tet face on the boundary has no boundary face", faces[i].key);
-        }
-        else if (nTet == 0)
-        {
-            fail("a boundary face is not the face of any tet", faces[i].key);
-        }
-        else
-        {
-            fail
-            (
-                std::to_string(nTet) + " tets and " + std::to_string(nBoundary)
-              + " boundary faces share a face",
-                faces[i].key
-            );
-        }
-        i = j;
     }
 }
 
@@ -1127,33 +1028,6 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
     const char* function = "pmsh::ng::surfaceVolumeMesh";
     const label nPoints = label(points.size());
 
-    // MeshVolume starts with Mesh::Compress(), which deletes points that no
-    // element uses and renumbers the rest: the surface points would no
-    // longer be 0..n-1. Refuse such input instead.
-    const surfacePointDefects use = findSurfacePointDefects(nPoints, triangles);
-    if (use.badTriangle >= 0)
-    {
-        throw FatalError
-        (
-            msg()
-                << "Triangle " << use.badTriangle << " of " << what
-                << " refers to point " << use.badPoint << ": valid points"
-                << " are 0.." << nPoints - 1,
-            function
-        );
-    }
-    if (use.firstUnused >= 0)
-    {
-        throw FatalError
-        (
-            msg()
-                << "Point " << use.firstUnused << ' ' << str(points[use.firstUnused])
-                << " of " << what << " is not used by any triangle: Netgen would"
-                << " renumber the points. Pass only the points of the surface",
-            function
-        );
-    }
-
     // An element larger than the domain is meaningless, and Netgen's local
     // size tree does not need 1e300
     const double diagonal = boundingBoxDiagonal(points);
@@ -1230,41 +1104,22 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
         );
     }
 
-    const int ne = nglib::Ng_GetNE(mesh);
-    const int np = nglib::Ng_GetNP(mesh);
-    const int nse = nglib::Ng_GetNSE(mesh);
-    if (ne == 0 || np < nPoints || nse != int(triangles.size()))
+    // Ng_GenerateVolumeMesh's steps report no failure but an empty mesh
+    if (nglib::Ng_GetNE(mesh) == 0)
     {
         throw FatalError
         (
             msg()
-                << "Netgen failed to mesh the volume of " << what << ": "
-                << ne << " tets, " << np << " points (" << nPoints
-                << " on the surface), " << nse << " surface triangles ("
-                << triangles.size() << " given)" << session.tail(),
+                << "Netgen failed to mesh the volume of " << what << ": no tets"
+                << session.tail(),
             function
         );
     }
 
+    // The contract (surface points kept in place and in order, the surface
+    // triangles faces of the tets) is VolumeMesher::mesh's to check
     volumeMesh m;
     readNglibMesh(mesh, m, what);
-
-    // Netgen keeps surface points in place and in order (they are
-    // SURFACEPOINTs: only INNERPOINTs move); checked bit for bit
-    for (label i = 0; i < nPoints; ++i)
-    {
-        if (std::memcmp(m.points[i].data(), points[i].data(), sizeof(point)) != 0)
-        {
-            throw FatalError
-            (
-                msg()
-                    << "Netgen moved surface point " << i << " of " << what
-                    << " from " << str(points[i]) << " to " << str(m.points[i]),
-                function
-            );
-        }
-    }
-
     makeTetsPositive(m, what);
 
     return m;

@@ -1,5 +1,4 @@
 #include "globalNumbering.H"
-#include "coarseMesh.H"
 #include "pmshError.H"
 
 #include <algorithm>

@@ -1,5 +1,4 @@
 #include "partitionCoarseMesh.H"
-#include "coarseMesh.H"
 #include "pmshError.H"
 #include "failTogether.H"
 #include "Info.H"

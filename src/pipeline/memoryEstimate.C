@@ -47,6 +47,15 @@
 namespace
 {
 
+//- Peak bytes per fine cell a rank holds: a safe upper figure (1.17 times
+//  the largest measured, 1284).
+constexpr double bytesPerFineCell = 1500;
+
+//- Peak bytes of a rank with (almost) no cells: executable, Netgen, MPI
+//  (measured 49-51 MiB).
+constexpr double baseBytesPerRank = 64.0*1048576;
+
+
 //- A count as a whole number ("58600"), or "9.85e+11" when very large.
 std::string count(double n)
 {

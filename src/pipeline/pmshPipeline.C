@@ -47,21 +47,12 @@ pmsh::volumeMeshParameters pmsh::volumeParameters
 }
 
 
-std::vector<pmsh::polyPatchInfo> pmsh::physicalPatches
-(
-    const CoarseMesh& coarse,
-    const meshSettings& settings
-)
+void pmsh::setPatchTypes(CoarseMesh& coarse, const meshSettings& settings)
 {
-    std::vector<polyPatchInfo> patches;
-    for (const std::string& name : coarse.patchNames)
+    for (meshPatch& p : coarse.patches)
     {
-        polyPatchInfo p;
-        p.name = name;
-        p.type = settings.patchType(name);
-        patches.push_back(p);
+        p.type = settings.patchType(p.name);
     }
-    return patches;
 }
 
 
@@ -72,9 +63,9 @@ void pmsh::logCoarseMesh(const CoarseMesh& coarse)
         << ", points: " << coarse.nPoints()
         << ", boundary faces: " << coarse.boundary.size() << '\n'
         << "    patches:";
-    for (const std::string& name : coarse.patchNames)
+    for (const meshPatch& p : coarse.patches)
     {
-        Info() << ' ' << name;
+        Info() << ' ' << p.name;
     }
     Info() << '\n';
 }
@@ -146,7 +137,7 @@ pmsh::globalLabel pmsh::logVolumeMeshing
 }
 
 
-pmsh::meshSizes pmsh::meshSizesOf(const Communicator&, const PolyMesh& mesh)
+pmsh::meshSizes pmsh::meshSizesOf(const Communicator&, const tetPolyMesh& mesh)
 {
     return {double(mesh.nFaces()), double(mesh.points.size())};
 }

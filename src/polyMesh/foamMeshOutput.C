@@ -4,11 +4,12 @@
 #include "processorPolyPatch.H"
 #include "labelIOList.H"
 #include "faceIOList.H"
+#include "UPstream.H"
 
 #include <algorithm>
 #include <cstdlib>
 
-pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, PolyMesh&& mesh)
+pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
 {
     using namespace Foam;
 
@@ -20,7 +21,7 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, PolyMesh&& mesh)
     }
     mesh.points = {};
 
-    // Each face is a view of its three labels in the PolyMesh's triangles.
+    // Each face is a view of its three labels in the tetPolyMesh's triangles.
     // List<face> forbids this (List::shallowCopy is deleted, as a List
     // owns its storage): the view is set through UList, and the destructor
     // takes every view back before the faceList would free it
@@ -65,12 +66,13 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, PolyMesh&& mesh)
     List<polyPatch*> patches(label(mesh.patches.size()));
     forAll(patches, i)
     {
-        const polyPatchInfo& p = mesh.patches[i];
+        const meshPatch& p = mesh.patches[i];
         if (p.isProcessor())
         {
             patches[i] = new processorPolyPatch
             (
-                p.size, p.start, i, mesh_->boundaryMesh(), p.myProcNo, p.neighbProcNo
+                p.size, p.start, i, mesh_->boundaryMesh(),
+                UPstream::myProcNo(), p.neighbProcNo
             );
         }
         else

@@ -7,7 +7,7 @@
 pmsh::procAddressing pmsh::buildProcAddressing
 (
     const Communicator& comm,
-    const PolyMesh& mesh,
+    const tetPolyMesh& mesh,
     const std::vector<globalLabel>& globalPointIds
 )
 {
@@ -25,7 +25,7 @@ pmsh::procAddressing pmsh::buildProcAddressing
     // 1. Tell each neighbour the global cells behind our processor faces,
     //    in patch order (face i on both sides is the same face)
     std::vector<std::vector<globalLabel>> ownerCells(nRanks);
-    for (const polyPatchInfo& p : mesh.patches)
+    for (const meshPatch& p : mesh.patches)
     {
         if (!p.isProcessor()) continue;
         for (label f = p.start; f < p.start + p.size; ++f)
@@ -40,7 +40,7 @@ pmsh::procAddressing pmsh::buildProcAddressing
     //    lower), then its processor faces to higher ranks by neighbour cell
     struct procFace { label cell; globalLabel nbrCell; label face; };
     std::vector<procFace> upperFaces;
-    for (const polyPatchInfo& p : mesh.patches)
+    for (const meshPatch& p : mesh.patches)
     {
         if (!p.isProcessor() || p.neighbProcNo < me) continue;
         const std::vector<globalLabel>& nbr = neighbourCells[p.neighbProcNo];
@@ -89,7 +89,7 @@ pmsh::procAddressing pmsh::buildProcAddressing
 
     // 3. The higher rank takes the lower rank's numbers, reversed
     std::vector<std::vector<globalLabel>> numbersToHigher(nRanks);
-    for (const polyPatchInfo& p : mesh.patches)
+    for (const meshPatch& p : mesh.patches)
     {
         if (!p.isProcessor() || p.neighbProcNo < me) continue;
         for (label f = p.start; f < p.start + p.size; ++f)
@@ -98,7 +98,7 @@ pmsh::procAddressing pmsh::buildProcAddressing
         }
     }
     const auto fromLower = comm.exchange(numbersToHigher);
-    for (const polyPatchInfo& p : mesh.patches)
+    for (const meshPatch& p : mesh.patches)
     {
         if (!p.isProcessor() || p.neighbProcNo > me) continue;
         const std::vector<globalLabel>& numbers = fromLower[p.neighbProcNo];
@@ -112,7 +112,7 @@ pmsh::procAddressing pmsh::buildProcAddressing
     globalLabel patchStart = nGlobalInternal;
     for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
     {
-        const polyPatchInfo& p = mesh.patches[pi];
+        const meshPatch& p = mesh.patches[pi];
         if (p.isProcessor())
         {
             addr.boundary.push_back(-1);

@@ -1,11 +1,10 @@
 #include "tetsToPolyMesh.H"
 #include "pmshError.H"
+#include "tetFaceMatching.H"
 
 #include <algorithm>
-#include <cstdint>
 #include <limits>
-#include <numeric>
-#include <sstream>
+#include <tuple>
 #include <unordered_set>
 
 namespace
@@ -13,83 +12,18 @@ namespace
 
 using namespace pmsh;
 
-// Tet faces and boundary triangles share one id space: tet face f of tet t
-// is 4*t + f, boundary triangle b is 4*nTets + b. 32 bits keep the matching
-// arrays at 8 bytes per tet face.
-using faceId = std::uint32_t;
-constexpr faceId noFace = std::numeric_limits<faceId>::max();
-
 const char* const where = "tetsToPolyMesh";
 
 
-bool sameRotation(const triFace& a, const triFace& b)
-{
-    return
-        (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
-      || (a[0] == b[1] && a[1] == b[2] && a[2] == b[0])
-      || (a[0] == b[2] && a[1] == b[0] && a[2] == b[1]);
-}
-
-
-template<class T>
-std::array<T, 3> sorted3(T a, T b, T c)
-{
-    if (a > b) std::swap(a, b);
-    if (b > c) std::swap(b, c);
-    if (a > b) std::swap(a, b);
-    return {a, b, c};
-}
-
-
-std::string facePoints(const triFace& f)
-{
-    std::ostringstream os;
-    os  << '(' << f[0] << ' ' << f[1] << ' ' << f[2] << ')';
-    return os.str();
-}
-
-
-//- Counts (and a first example) of one kind of inconsistency.
-struct problem
-{
-    std::size_t count = 0;
-    std::string example;
-
-    //- describe() is only called for the first one: formatting every
-    //  bad face of a big mesh would be slow.
-    template<class Describe>
-    void add(const Describe& describe)
-    {
-        if (count++ == 0)
-        {
-            example = describe();
-        }
-    }
-};
-
-
-//- Rotate f so that its point with the smallest global id comes first.
-triFace rotateToSmallestGlobal
-(
-    const triFace& f,
-    const std::vector<globalLabel>& globalIds
-)
-{
-    int k = 0;
-    if (globalIds[f[1]] < globalIds[f[k]]) k = 1;
-    if (globalIds[f[2]] < globalIds[f[k]]) k = 2;
-    return {f[k], f[(k + 1) % 3], f[(k + 2) % 3]};
-}
-
-
-//- Check the input sizes, indices, tet volumes and point usage.
+//- Check the input sizes, indices, tet volumes, point usage, patches and
+//  regions (the tets and the surface are matched afterwards).
 void checkInput
 (
     const std::vector<point>& points,
     const std::vector<tetCell>& tets,
     const std::vector<triFace>& boundaryTriangles,
     const std::vector<label>& boundaryRegion,
-    const std::vector<polyPatchInfo>& physicalPatches,
+    const std::vector<meshPatch>& physicalPatches,
     label myProcNo,
     const std::vector<globalLabel>& globalPointIds
 )
@@ -97,14 +31,12 @@ void checkInput
     const std::size_t nPoints = points.size();
     const std::size_t nTets = tets.size();
     const std::size_t nTris = boundaryTriangles.size();
-    constexpr std::size_t labelMax = std::numeric_limits<label>::max();
 
-    if (nPoints > labelMax || 4*nTets + nTris >= std::size_t(noFace))
+    if (nPoints > std::size_t(std::numeric_limits<label>::max()))
     {
         throw FatalError
         (
-            msg() << "Too large for one rank: " << nPoints << " points, "
-                << nTets << " tets, " << nTris << " boundary triangles.\n"
+            msg() << "Too large for one rank: " << nPoints << " points.\n"
                 "Use more ranks",
             where
         );
@@ -133,7 +65,7 @@ void checkInput
     }
 
     std::unordered_set<std::string> names;
-    for (const polyPatchInfo& p : physicalPatches)
+    for (const meshPatch& p : physicalPatches)
     {
         if (p.isProcessor())
         {
@@ -156,7 +88,7 @@ void checkInput
     }
 
     std::vector<char> used(nPoints, 0);
-    problem badIndex, badVolume;
+    problemCount badIndex, badVolume;
     for (std::size_t t = 0; t < nTets; ++t)
     {
         const tetCell& c = tets[t];
@@ -174,30 +106,19 @@ void checkInput
         }
         if (!inRange)
         {
-            badIndex.add([&]() { return "tet " + std::to_string(t); });
-            continue;
+            badIndex.add([&] { return "tet " + std::to_string(t); });
         }
-        const double v6 = tetVolume6
-        (
-            points[c[0]], points[c[1]], points[c[2]], points[c[3]]
-        );
-        if (!(v6 > 0))
+        else if (!(tetVolume6(points[c[0]], points[c[1]], points[c[2]], points[c[3]]) > 0))
         {
-            badVolume.add([&]() { return "tet " + std::to_string(t); });
+            badVolume.add([&] { return "tet " + std::to_string(t); });
         }
     }
     for (std::size_t b = 0; b < nTris; ++b)
     {
-        for (const label v : boundaryTriangles[b])
+        const triFace& f = boundaryTriangles[b];
+        if (std::any_of(f.begin(), f.end(), [&](label v) { return v < 0 || std::size_t(v) >= nPoints; }))
         {
-            if (v < 0 || std::size_t(v) >= nPoints)
-            {
-                badIndex.add
-                (
-                    [&]() { return "boundary triangle " + std::to_string(b); }
-                );
-                break;
-            }
+            badIndex.add([&] { return "boundary triangle " + std::to_string(b); });
         }
     }
     if (badIndex.count)
@@ -206,7 +127,7 @@ void checkInput
         (
             msg() << badIndex.count << " tets or boundary triangles have a"
                 " point index outside 0.." << nPoints - 1 << " (first: "
-                << badIndex.example << ")",
+                << badIndex.first << ")",
             where
         );
     }
@@ -215,7 +136,7 @@ void checkInput
         throw FatalError
         (
             msg() << badVolume.count << " of " << nTets << " tets have a"
-                " non-positive volume (first: " << badVolume.example << ").\n"
+                " non-positive volume (first: " << badVolume.first << ").\n"
                 "Every tet (a b c d) must have tetVolume6 > 0",
             where
         );
@@ -230,31 +151,244 @@ void checkInput
             where
         );
     }
+
+    // A region is a physical patch, or an interface with another rank
+    // (which needs global point ids to order the processor faces)
+    problemCount badRegion;
+    for (std::size_t b = 0; b < nTris; ++b)
+    {
+        const label r = boundaryRegion[b];
+        const std::string triangle = "triangle " + std::to_string(b);
+        if (!isInterfaceRegion(r) && std::size_t(r) >= physicalPatches.size())
+        {
+            badRegion.add([&]
+            {
+                return triangle + " has region " + std::to_string(r) + " but there are "
+                    + std::to_string(physicalPatches.size()) + " physical patches";
+            });
+        }
+        else if
+        (
+            isInterfaceRegion(r)
+         && (myProcNo < 0 || interfaceNeighbour(r) == myProcNo || globalPointIds.empty())
+        )
+        {
+            badRegion.add([&]
+            {
+                return triangle + " is an interface with rank "
+                    + std::to_string(interfaceNeighbour(r)) + " on rank "
+                    + std::to_string(myProcNo)
+                    + (globalPointIds.empty() ? " without global point ids" : "");
+            });
+        }
+    }
+    if (badRegion.count)
+    {
+        throw FatalError
+        (
+            msg() << badRegion.count << " boundary triangles have an invalid"
+                " region (first: " << badRegion.first << ")",
+            where
+        );
+    }
+}
+
+
+//- Internal faces: owner < neighbour, ordered by (owner, neighbour), each
+//  outward from its owner (towards the neighbour).
+void addInternalFaces
+(
+    tetPolyMesh& mesh,
+    const std::vector<tetCell>& tets,
+    const std::vector<faceId>& across
+)
+{
+    const faceId nTetFaces = faceId(4*tets.size());
+    for (std::size_t t = 0; t < tets.size(); ++t)
+    {
+        // The faces towards higher tets, by neighbour (at most 4: insertion
+        // sort)
+        std::array<std::pair<label, int>, 4> upper;
+        int n = 0;
+        for (int f = 0; f < 4; ++f)
+        {
+            const faceId other = across[4*t + f];
+            if (other < nTetFaces && other/4 > t)
+            {
+                upper[n++] = {label(other/4), f};
+                for (int k = n - 1; k > 0 && upper[k] < upper[k - 1]; --k)
+                {
+                    std::swap(upper[k], upper[k - 1]);
+                }
+            }
+        }
+        for (int k = 0; k < n; ++k)
+        {
+            mesh.faces.push_back(tetFace(tets[t], upper[k].second));
+            mesh.owner.push_back(label(t));
+            mesh.neighbour.push_back(upper[k].first);
+        }
+    }
+}
+
+
+//- The physical patches, in the given order (also those with no face
+//  here), their faces ordered by (owner, local tet face) and outward.
+void addPhysicalPatches
+(
+    tetPolyMesh& mesh,
+    const std::vector<tetCell>& tets,
+    const std::vector<faceId>& across,
+    const std::vector<label>& boundaryRegion,
+    const std::vector<meshPatch>& physicalPatches
+)
+{
+    const faceId nTetFaces = faceId(4*tets.size());
+    auto physicalPatchOf = [&](faceId id) -> label
+    {
+        const faceId other = across[id];
+        if (other == noFace || other < nTetFaces)
+        {
+            return -1;
+        }
+        const label r = boundaryRegion[other - nTetFaces];
+        return isInterfaceRegion(r) ? -1 : r;
+    };
+
+    // Counting sort by patch: tet faces in id order stay in owner order
+    mesh.patches = physicalPatches;
+    for (meshPatch& p : mesh.patches)
+    {
+        p.size = 0;
+    }
+    for (faceId id = 0; id < nTetFaces; ++id)
+    {
+        const label p = physicalPatchOf(id);
+        if (p >= 0)
+        {
+            ++mesh.patches[p].size;
+        }
+    }
+    std::vector<std::size_t> next;
+    label start = mesh.nFaces();
+    for (meshPatch& p : mesh.patches)
+    {
+        p.start = start;
+        next.push_back(std::size_t(start));
+        start += p.size;
+    }
+    mesh.faces.resize(start);
+    mesh.owner.resize(start);
+    for (faceId id = 0; id < nTetFaces; ++id)
+    {
+        const label p = physicalPatchOf(id);
+        if (p >= 0)
+        {
+            const std::size_t facei = next[p]++;
+            mesh.faces[facei] = tetFace(tets[id/4], int(id % 4));
+            mesh.owner[facei] = label(id/4);
+        }
+    }
+}
+
+
+//- One processor patch per neighbouring rank, in ascending rank. Its faces
+//  are sorted by their sorted global point ids (both sides compute the same
+//  key, so face i on one side is face i on the other) and rotated to start
+//  at their smallest global id: outward from each side's own cell, the
+//  other side's face is then OpenFOAM's reverseFace.
+void addProcessorPatches
+(
+    tetPolyMesh& mesh,
+    const std::vector<tetCell>& tets,
+    const std::vector<faceId>& across,
+    const std::vector<label>& boundaryRegion,
+    label myProcNo,
+    const std::vector<globalLabel>& globalPointIds
+)
+{
+    const faceId nTetFaces = faceId(4*tets.size());
+    struct processorFace
+    {
+        label neighbProcNo;
+        std::array<globalLabel, 3> key;
+        faceId id;
+
+        bool operator<(const processorFace& o) const
+        {
+            return std::tie(neighbProcNo, key) < std::tie(o.neighbProcNo, o.key);
+        }
+    };
+    std::vector<processorFace> faces;
+    for (faceId id = 0; id < nTetFaces; ++id)
+    {
+        const faceId other = across[id];
+        if (other != noFace && other >= nTetFaces)
+        {
+            const label r = boundaryRegion[other - nTetFaces];
+            if (isInterfaceRegion(r))
+            {
+                const triFace f = tetFace(tets[id/4], int(id % 4));
+                std::array<globalLabel, 3> key
+                {
+                    globalPointIds[f[0]], globalPointIds[f[1]], globalPointIds[f[2]]
+                };
+                std::sort(key.begin(), key.end());
+                faces.push_back({interfaceNeighbour(r), key, id});
+            }
+        }
+    }
+    std::sort(faces.begin(), faces.end());
+
+    for (std::size_t i = 0; i < faces.size(); ++i)
+    {
+        const processorFace& pf = faces[i];
+        const auto& k = pf.key;
+        const bool newPatch = i == 0 || pf.neighbProcNo != faces[i - 1].neighbProcNo;
+        if (newPatch)
+        {
+            meshPatch p;
+            p.name = processorPatchName(myProcNo, pf.neighbProcNo);
+            p.type = "processor";
+            p.start = mesh.nFaces();
+            p.neighbProcNo = pf.neighbProcNo;
+            mesh.patches.push_back(p);
+        }
+        if (k[0] == k[1] || k[1] == k[2] || (!newPatch && k == faces[i - 1].key))
+        {
+            throw FatalError
+            (
+                msg() << "Patch " << mesh.patches.back().name << ": two faces or"
+                    " two points of a face have the same global point ids ("
+                    << k[0] << ' ' << k[1] << ' ' << k[2] << ").\n"
+                    "Global point ids must be unique per point",
+                where
+            );
+        }
+        ++mesh.patches.back().size;
+
+        // Rotated so that the point with the smallest global id comes first
+        const triFace f = tetFace(tets[pf.id/4], int(pf.id % 4));
+        int first = 0;
+        if (globalPointIds[f[1]] < globalPointIds[f[first]]) first = 1;
+        if (globalPointIds[f[2]] < globalPointIds[f[first]]) first = 2;
+        mesh.faces.push_back({f[first], f[(first + 1) % 3], f[(first + 2) % 3]});
+        mesh.owner.push_back(label(pf.id/4));
+    }
 }
 
 } // End anonymous namespace
 
 
-// * * * * * * * * * * * * * * * Free functions  * * * * * * * * * * * * * //
-
-std::string pmsh::processorPatchName(label myProcNo, label neighbProcNo)
-{
-    return
-        "procBoundary" + std::to_string(myProcNo)
-      + "to" + std::to_string(neighbProcNo);
-}
-
-
-pmsh::PolyMesh pmsh::tetsToPolyMesh
+pmsh::tetPolyMesh pmsh::tetsToPolyMesh
 (
     std::vector<point>&& points,
     const std::vector<tetCell>& tets,
     const std::vector<triFace>& boundaryTriangles,
     const std::vector<label>& boundaryRegion,
-    const std::vector<polyPatchInfo>& physicalPatches,
+    const std::vector<meshPatch>& physicalPatches,
     label myProcNo,
-    const std::vector<globalLabel>& globalPointIds,
-    tetsToPolyMeshMaps* maps
+    const std::vector<globalLabel>& globalPointIds
 )
 {
     checkInput
@@ -262,535 +396,32 @@ pmsh::PolyMesh pmsh::tetsToPolyMesh
         points, tets, boundaryTriangles, boundaryRegion, physicalPatches,
         myProcNo, globalPointIds
     );
-
-    const std::size_t nPoints = points.size();
-    const std::size_t nTets = tets.size();
-    const std::size_t nTris = boundaryTriangles.size();
-    const faceId nTetFaces = faceId(4*nTets);
-    const faceId nIds = faceId(4*nTets + nTris);
-
-    auto faceOf = [&](faceId id) -> triFace
+    const tetFaceMatch match = matchTetFaces(points.size(), tets, boundaryTriangles);
+    if (!match.fits())
     {
-        return id < nTetFaces
-            ? tetFace(tets[id/4], int(id % 4))
-            : boundaryTriangles[id - nTetFaces];
-    };
-
-
-    // Regions: physical patch index, or the neighbouring rank
-    std::vector<label> nbrRanks;
-    {
-        problem badRegion;
-        for (std::size_t b = 0; b < nTris; ++b)
-        {
-            const label r = boundaryRegion[b];
-            if (!isInterfaceRegion(r))
-            {
-                if (std::size_t(r) >= physicalPatches.size())
-                {
-                    badRegion.add
-                    (
-                        [&]()
-                        {
-                            return
-                                "triangle " + std::to_string(b)
-                              + " has region " + std::to_string(r)
-                              + " but there are "
-                              + std::to_string(physicalPatches.size())
-                              + " physical patches";
-                        }
-                    );
-                }
-                continue;
-            }
-            const label nbr = interfaceNeighbour(r);
-            if (myProcNo < 0 || nbr == myProcNo || globalPointIds.empty())
-            {
-                badRegion.add
-                (
-                    [&]()
-                    {
-                        return
-                            "triangle " + std::to_string(b)
-                          + " is an interface with rank " + std::to_string(nbr)
-                          + " on rank " + std::to_string(myProcNo)
-                          + (
-                                globalPointIds.empty()
-                              ? " without global point ids" : ""
-                            );
-                    }
-                );
-                continue;
-            }
-            if (nbrRanks.empty() || nbrRanks.back() != nbr)
-            {
-                nbrRanks.push_back(nbr);
-            }
-        }
-        if (badRegion.count)
-        {
-            throw FatalError
-            (
-                msg() << badRegion.count << " boundary triangles have an"
-                    " invalid region (first: " << badRegion.example << ")",
-                where
-            );
-        }
-        std::sort(nbrRanks.begin(), nbrRanks.end());
-        nbrRanks.erase
+        throw FatalError
         (
-            std::unique(nbrRanks.begin(), nbrRanks.end()), nbrRanks.end()
+            msg() << "The tets (" << tets.size() << ") and the boundary surface ("
+                << boundaryTriangles.size() << " triangles) do not match:"
+                << match.problems,
+            where
         );
     }
-    const std::size_t nPhysical = physicalPatches.size();
-    const std::size_t nPatches = nPhysical + nbrRanks.size();
 
-    auto patchOfRegion = [&](label r) -> std::size_t
-    {
-        if (!isInterfaceRegion(r))
-        {
-            return std::size_t(r);
-        }
-        return nPhysical
-          + std::size_t
-            (
-                std::lower_bound
-                (
-                    nbrRanks.begin(), nbrRanks.end(), interfaceNeighbour(r)
-                ) - nbrRanks.begin()
-            );
-    };
-
-
-    // Match faces: bucket every tet face and triangle by its smallest
-    // point (counting sort), then sort each small bucket by the other two
-    std::vector<faceId> partner(nTetFaces, noFace);
-    {
-        std::vector<faceId> bucketEnd(nPoints + 1, 0);
-        for (faceId id = 0; id < nIds; ++id)
-        {
-            const triFace f = faceOf(id);
-            ++bucketEnd[std::min({f[0], f[1], f[2]}) + 1];
-        }
-        std::partial_sum(bucketEnd.begin(), bucketEnd.end(), bucketEnd.begin());
-
-        std::vector<faceId> bucketed(nIds);
-        for (faceId id = 0; id < nIds; ++id)
-        {
-            const triFace f = faceOf(id);
-            bucketed[bucketEnd[std::min({f[0], f[1], f[2]})]++] = id;
-        }
-        // Now bucketEnd[v] is the end of bucket v (and the begin of v+1)
-
-        problem open, notTetFace, internalInSurface, nonManifold;
-        problem wrongSide, overlapping;
-
-        struct entry
-        {
-            label k1, k2;
-            faceId id;
-            bool operator<(const entry& o) const
-            {
-                if (k1 != o.k1) return k1 < o.k1;
-                if (k2 != o.k2) return k2 < o.k2;
-                return id < o.id;
-            }
-        };
-        std::vector<entry> bucket;
-
-        faceId begin = 0;
-        for (std::size_t v = 0; v < nPoints; ++v)
-        {
-            const faceId end = bucketEnd[v];
-            bucket.clear();
-            for (faceId i = begin; i < end; ++i)
-            {
-                const triFace f = faceOf(bucketed[i]);
-                const auto s = sorted3(f[0], f[1], f[2]);
-                bucket.push_back({s[1], s[2], bucketed[i]});
-            }
-            begin = end;
-            std::sort(bucket.begin(), bucket.end());
-
-            for (std::size_t i = 0; i < bucket.size(); )
-            {
-                std::size_t j = i + 1;
-                while
-                (
-                    j < bucket.size()
-                 && bucket[j].k1 == bucket[i].k1
-                 && bucket[j].k2 == bucket[i].k2
-                )
-                {
-                    ++j;
-                }
-                // Ids are sorted: tet faces come before triangles
-                std::size_t nTet = 0;
-                while (i + nTet < j && bucket[i + nTet].id < nTetFaces)
-                {
-                    ++nTet;
-                }
-                const std::size_t nTri = j - i - nTet;
-                const faceId a = bucket[i].id;
-                // Only formatted when something is wrong
-                auto pts = [&]() { return facePoints(faceOf(a)); };
-
-                if (nTet == 2 && nTri == 0)
-                {
-                    const faceId b = bucket[i + 1].id;
-                    if (sameRotation(faceOf(a), faceOf(b)))
-                    {
-                        overlapping.add
-                        (
-                            [&]()
-                            {
-                                return
-                                    "tets " + std::to_string(a/4) + " and "
-                                  + std::to_string(b/4) + " at face " + pts();
-                            }
-                        );
-                    }
-                    partner[a] = b;
-                    partner[b] = a;
-                }
-                else if (nTet == 1 && nTri == 1)
-                {
-                    const faceId b = bucket[i + 1].id;
-                    if (!sameRotation(faceOf(a), faceOf(b)))
-                    {
-                        wrongSide.add
-                        (
-                            [&]()
-                            {
-                                return
-                                    "triangle "
-                                  + std::to_string(b - nTetFaces) + " "
-                                  + facePoints(faceOf(b)) + " of tet "
-                                  + std::to_string(a/4);
-                            }
-                        );
-                    }
-                    partner[a] = b;
-                }
-                else if (nTet == 1 && nTri == 0)
-                {
-                    open.add
-                    (
-                        [&]()
-                        {
-                            return
-                                "tet " + std::to_string(a/4) + " face "
-                              + pts();
-                        }
-                    );
-                }
-                else if (nTet == 0)
-                {
-                    for (std::size_t k = i; k < j; ++k)
-                    {
-                        notTetFace.add
-                        (
-                            [&]()
-                            {
-                                return
-                                    "triangle "
-                                  + std::to_string(bucket[k].id - nTetFaces)
-                                  + " " + pts();
-                            }
-                        );
-                    }
-                }
-                else if (nTet == 2)
-                {
-                    for (std::size_t k = i + nTet; k < j; ++k)
-                    {
-                        internalInSurface.add
-                        (
-                            [&]()
-                            {
-                                return
-                                    "triangle "
-                                  + std::to_string(bucket[k].id - nTetFaces)
-                                  + " " + pts();
-                            }
-                        );
-                    }
-                }
-                else
-                {
-                    nonManifold.add
-                    (
-                        [&]()
-                        {
-                            return
-                                std::to_string(nTet) + " tets and "
-                              + std::to_string(nTri) + " triangles share face "
-                              + pts();
-                        }
-                    );
-                }
-                i = j;
-            }
-        }
-
-        std::ostringstream os;
-        auto report = [&os](const problem& p, const char* what)
-        {
-            if (p.count)
-            {
-                os  << "\n    " << p.count << ' ' << what
-                    << " (first: " << p.example << ')';
-            }
-        };
-        report(open, "tet faces are on no other tet and not in the boundary"
-            " surface (boundary face not in the surface)");
-        report(notTetFace, "boundary surface triangles are not a tet face");
-        report(internalInSurface, "boundary surface triangles lie on a face"
-            " between two tets");
-        report(nonManifold, "faces are shared by more than two tets or"
-            " surface triangles (duplicates)");
-        report(wrongSide, "boundary surface triangles are not oriented"
-            " outward from their tet (orientation mismatch)");
-        report(overlapping, "faces are shared by two tets on the same side"
-            " (overlapping tets)");
-        if (!os.str().empty())
-        {
-            throw FatalError
-            (
-                msg() << "The tets (" << nTets << ") and the boundary surface ("
-                    << nTris << " triangles) do not match:" << os.str(),
-                where
-            );
-        }
-    }
-
-
-    PolyMesh mesh;
+    tetPolyMesh mesh;
     mesh.points = std::move(points);
-    mesh.nCells = label(nTets);
+    mesh.nCells = label(tets.size());
 
-    std::size_t nBoundaryFaces = 0;
-    for (faceId id = 0; id < nTetFaces; ++id)
-    {
-        if (partner[id] >= nTetFaces)
-        {
-            ++nBoundaryFaces;
-        }
-    }
-    const std::size_t nInternal = (nTetFaces - nBoundaryFaces)/2;
-    const std::size_t nFaces = nInternal + nBoundaryFaces;
+    // Every tet face is one face, an internal one from both of its tets
+    const std::size_t nBoundary = boundaryTriangles.size();
+    const std::size_t nFaces = (4*tets.size() + nBoundary)/2;
+    mesh.faces.reserve(nFaces);
+    mesh.owner.reserve(nFaces);
+    mesh.neighbour.reserve(nFaces - nBoundary);
 
-    mesh.faces.resize(nFaces);
-    mesh.owner.resize(nFaces);
-    mesh.neighbour.resize(nInternal);
-
-    // The tet face each PolyMesh face comes from (for the optional maps)
-    std::vector<faceId> faceSource;
-    if (maps)
-    {
-        faceSource.resize(nFaces);
-    }
-
-
-    // Internal faces: owner = lower tet, sorted by (owner, neighbour)
-    {
-        std::size_t facei = 0;
-        for (std::size_t t = 0; t < nTets; ++t)
-        {
-            std::array<std::pair<label, int>, 4> upper;
-            int n = 0;
-            for (int f = 0; f < 4; ++f)
-            {
-                const faceId p = partner[4*t + f];
-                if (p < nTetFaces && p/4 > t)
-                {
-                    upper[n++] = {label(p/4), f};
-                }
-            }
-            // At most 4 entries: insertion sort by neighbour
-            for (int a = 1; a < n; ++a)
-            {
-                for (int b = a; b > 0 && upper[b] < upper[b - 1]; --b)
-                {
-                    std::swap(upper[b], upper[b - 1]);
-                }
-            }
-            for (int k = 0; k < n; ++k)
-            {
-                if (k && upper[k].first == upper[k - 1].first)
-                {
-                    throw FatalError
-                    (
-                        msg() << "Tets " << t << " and " << upper[k].first
-                            << " share more than one face (duplicate tets)",
-                        where
-                    );
-                }
-                // Outward from the owner = towards the neighbour
-                mesh.faces[facei] = tetFace(tets[t], upper[k].second);
-                mesh.owner[facei] = label(t);
-                mesh.neighbour[facei] = upper[k].first;
-                if (maps)
-                {
-                    faceSource[facei] = faceId(4*t + upper[k].second);
-                }
-                ++facei;
-            }
-        }
-    }
-
-
-    // Boundary faces grouped by patch (counting sort keeps them ordered by
-    // owner, then local face)
-    mesh.patches.resize(nPatches);
-    for (std::size_t p = 0; p < nPhysical; ++p)
-    {
-        mesh.patches[p] = physicalPatches[p];
-        mesh.patches[p].size = 0;
-    }
-    for (std::size_t k = 0; k < nbrRanks.size(); ++k)
-    {
-        polyPatchInfo& pp = mesh.patches[nPhysical + k];
-        pp.name = processorPatchName(myProcNo, nbrRanks[k]);
-        pp.type = "processor";
-        pp.myProcNo = myProcNo;
-        pp.neighbProcNo = nbrRanks[k];
-    }
-    for (faceId id = 0; id < nTetFaces; ++id)
-    {
-        if (partner[id] != noFace && partner[id] >= nTetFaces)
-        {
-            const label r = boundaryRegion[partner[id] - nTetFaces];
-            ++mesh.patches[patchOfRegion(r)].size;
-        }
-    }
-    {
-        label start = label(nInternal);
-        for (polyPatchInfo& pp : mesh.patches)
-        {
-            pp.start = start;
-            start += pp.size;
-        }
-    }
-    {
-        std::vector<std::size_t> next(nPatches);
-        for (std::size_t p = 0; p < nPatches; ++p)
-        {
-            next[p] = std::size_t(mesh.patches[p].start);
-        }
-        for (faceId id = 0; id < nTetFaces; ++id)
-        {
-            if (partner[id] != noFace && partner[id] >= nTetFaces)
-            {
-                const label r = boundaryRegion[partner[id] - nTetFaces];
-                const std::size_t facei = next[patchOfRegion(r)]++;
-                mesh.faces[facei] = tetFace(tets[id/4], int(id % 4));
-                mesh.owner[facei] = label(id/4);
-                if (maps)
-                {
-                    faceSource[facei] = id;
-                }
-            }
-        }
-    }
-
-
-    // Processor faces: same order on both sides (sorted global point ids),
-    // vertex 0 = smallest global id, so the other side is reverseFace
-    for (std::size_t p = nPhysical; p < nPatches; ++p)
-    {
-        const polyPatchInfo& pp = mesh.patches[p];
-        const std::size_t start = std::size_t(pp.start);
-        const std::size_t size = std::size_t(pp.size);
-
-        struct keyed
-        {
-            std::array<globalLabel, 3> key;
-            std::size_t facei;
-        };
-        std::vector<keyed> order(size);
-        for (std::size_t i = 0; i < size; ++i)
-        {
-            const triFace& f = mesh.faces[start + i];
-            order[i] =
-            {
-                sorted3
-                (
-                    globalPointIds[f[0]],
-                    globalPointIds[f[1]],
-                    globalPointIds[f[2]]
-                ),
-                start + i
-            };
-        }
-        std::sort
-        (
-            order.begin(), order.end(),
-            [](const keyed& a, const keyed& b) { return a.key < b.key; }
-        );
-        for (std::size_t i = 0; i < size; ++i)
-        {
-            const auto& k = order[i].key;
-            if
-            (
-                (i && k == order[i - 1].key)
-             || k[0] == k[1]
-             || k[1] == k[2]
-            )
-            {
-                throw FatalError
-                (
-                    msg() << "Patch " << pp.name << ": two faces or two"
-                        " points of a face have the same global point ids ("
-                        << k[0] << ' ' << k[1] << ' ' << k[2] << ").\n"
-                        "Global point ids must be unique per point",
-                    where
-                );
-            }
-        }
-
-        std::vector<triFace> faces(size);
-        std::vector<label> owner(size);
-        std::vector<faceId> source(maps ? size : 0);
-        for (std::size_t i = 0; i < size; ++i)
-        {
-            const std::size_t from = order[i].facei;
-            faces[i] = rotateToSmallestGlobal(mesh.faces[from], globalPointIds);
-            owner[i] = mesh.owner[from];
-            if (maps)
-            {
-                source[i] = faceSource[from];
-            }
-        }
-        std::copy(faces.begin(), faces.end(), mesh.faces.begin() + start);
-        std::copy(owner.begin(), owner.end(), mesh.owner.begin() + start);
-        if (maps)
-        {
-            std::copy(source.begin(), source.end(), faceSource.begin() + start);
-        }
-    }
-
-
-    if (maps)
-    {
-        maps->tetFaceToFace.assign(nTetFaces, -1);
-        maps->boundaryTriangleToFace.assign(nTris, -1);
-        for (std::size_t facei = 0; facei < nFaces; ++facei)
-        {
-            const faceId id = faceSource[facei];
-            maps->tetFaceToFace[id] = label(facei);
-            if (facei < nInternal)
-            {
-                maps->tetFaceToFace[partner[id]] = label(facei);
-            }
-            else
-            {
-                maps->boundaryTriangleToFace[partner[id] - nTetFaces] =
-                    label(facei);
-            }
-        }
-    }
-
+    addInternalFaces(mesh, tets, match.across);
+    addPhysicalPatches(mesh, tets, match.across, boundaryRegion, physicalPatches);
+    addProcessorPatches(mesh, tets, match.across, boundaryRegion, myProcNo, globalPointIds);
     return mesh;
 }
 

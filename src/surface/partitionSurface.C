@@ -1,6 +1,4 @@
 #include "partitionSurface.H"
-#include "boundaryRegion.H"
-#include "coarseMesh.H"
 
 pmsh::coarsePartSurface pmsh::partitionSurface
 (

@@ -2,6 +2,7 @@
 #include "Geometry.H"
 #include "pmshError.H"
 #include "partitionSurface.H"
+#include "matchByPoints.H"
 
 #include <algorithm>
 #include <tuple>
@@ -11,52 +12,35 @@
 
 pmsh::boundaryEdgeSurfaces::boundaryEdgeSurfaces(const CoarseMesh& coarse)
 {
-    // Each boundary edge appears twice, once per face of the closed boundary
-    std::vector<edge> halfEdges;
-    halfEdges.reserve(3*coarse.boundary.size());
-    for (const coarseBoundaryFace& f : coarse.boundary)
+    // Edge k of boundary face b is 3*b + k; each appears twice, once per
+    // face of the closed boundary. Groups come in (p, q) order.
+    auto edgeOf = [&](matchId id)
     {
-        for (int e = 0; e < 3; ++e)
-        {
-            const label a = f.v[e];
-            const label b = f.v[(e + 1) % 3];
-            halfEdges.push_back({std::min(a, b), std::max(a, b), f.surface, -1});
-        }
-    }
-    auto byEdge = [](const edge& x, const edge& y)
-    {
-        return std::tie(x.p, x.q, x.s1) < std::tie(y.p, y.q, y.s1);
+        const triFace& f = coarse.boundary[id/3].v;
+        return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
     };
-    std::sort(halfEdges.begin(), halfEdges.end(), byEdge);
-
-    edges_.reserve(halfEdges.size()/2);
-    for (std::size_t n = 0; n < halfEdges.size(); )
-    {
-        std::size_t m = n + 1;
-        while
-        (
-            m < halfEdges.size()
-         && halfEdges[m].p == halfEdges[n].p && halfEdges[m].q == halfEdges[n].q
-        )
+    edges_.reserve(3*coarse.boundary.size()/2);
+    forEachSamePointsGroup
+    (
+        coarse.points.size(), matchId(3*coarse.boundary.size()), edgeOf,
+        [&](const matchId* ids, std::size_t n)
         {
-            ++m;
+            const auto e = sortedPoints(edgeOf(ids[0]));
+            if (n != 2)
+            {
+                throw FatalError
+                (
+                    msg() << "The coarse boundary is not a closed manifold: edge "
+                        << e[0] << '-' << e[1] << " is used by " << n
+                        << " boundary faces instead of 2",
+                    "boundaryEdgeSurfaces"
+                );
+            }
+            const label s1 = coarse.boundary[ids[0]/3].surface;
+            const label s2 = coarse.boundary[ids[1]/3].surface;
+            edges_.push_back({e[0], e[1], std::min(s1, s2), std::max(s1, s2)});
         }
-        if (m - n != 2)
-        {
-            throw FatalError
-            (
-                msg() << "The coarse boundary is not a closed manifold: edge "
-                    << halfEdges[n].p << '-' << halfEdges[n].q << " is used by "
-                    << (m - n) << " boundary faces instead of 2",
-                "boundaryEdgeSurfaces"
-            );
-        }
-        edges_.push_back
-        (
-            {halfEdges[n].p, halfEdges[n].q, halfEdges[n].s1, halfEdges[n + 1].s1}
-        );
-        n = m;
-    }
+    );
 }
 
 
@@ -151,19 +135,6 @@ private:
     std::vector<point> pos_;
 };
 
-
-// Is (a, b, c) a cyclic rotation of (p0, p1, p2)?
-bool sameOrientation(const triFace& sorted, const triFace& f)
-{
-    for (int r = 0; r < 3; ++r)
-    {
-        if (f[r] == sorted[0])
-        {
-            return f[(r + 1) % 3] == sorted[1];
-        }
-    }
-    return false;
-}
 
 } // End anonymous namespace
 

@@ -113,7 +113,7 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         gmsh::option::setNumber("Mesh.Algorithm3D", 10);       // HXT
         // Quirk: with more than one thread, Debian's Gmsh 4.8.4 HXT now and
         // then returns a duplicated interior node (faces matching nothing);
-        // verifyVolumeMesh catches it and meshPartitionVolume retries with
+        // VolumeMesher::mesh catches it and meshPartitionVolume retries with
         // one thread
         gmsh::option::setNumber("General.NumThreads", parameters.threads);
         // Interior size grows from the surface edge lengths, as Netgen's,
@@ -143,19 +143,17 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         std::vector<double> coords, parametric;
         gmsh::model::mesh::getNodes(nodeTags, coords, parametric, -1, -1, false, false);
 
-        // Surface nodes must come back where they went in; new nodes follow
-        // in tag order
+        // Node tag i + 1 is surface point i (where Gmsh put it: whether it
+        // is still where it went in is VolumeMesher::mesh's to check); new
+        // nodes follow in tag order
+        result.points = surfacePoints;
         std::vector<std::size_t> newTags;
         for (std::size_t k = 0; k < nodeTags.size(); ++k)
         {
-            const std::size_t tag = nodeTags[k];
-            if (tag <= nSurface)
+            if (nodeTags[k] <= nSurface)
             {
-                if (std::memcmp(&coords[3*k], surfacePoints[tag - 1].data(), sizeof(point)))
-                {
-                    throw std::string("Gmsh moved surface point ")
-                        + std::to_string(tag - 1);
-                }
+                result.points[nodeTags[k] - 1] =
+                    {coords[3*k], coords[3*k + 1], coords[3*k + 2]};
             }
             else
             {
@@ -172,7 +170,6 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         std::vector<label> index(maxTag + 1, -1);
         for (std::size_t i = 0; i < nSurface; ++i) index[i + 1] = label(i);
 
-        result.points = surfacePoints;
         result.points.reserve(nSurface + newTags.size());
         for (std::size_t k : newTags)
         {

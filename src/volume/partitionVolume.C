@@ -2,52 +2,20 @@
 #include "childProcess.H"
 #include "pmshError.H"
 
+#include <algorithm>
 #include <cmath>
-#include <csignal>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
-#include <sstream>
 
 namespace
 {
 
 using namespace pmsh;
 
-// Test-only fault injection: PMSH_TEST_FAIL_VOLUME_RANK =
-// "<rank>[:<backend>][:crash]" makes that rank's attempts (with that backend
-// only, if named) fail, or with ":crash" die of SIGSEGV inside the mesher's
-// child process, as a crashing Netgen or Gmsh would.
-enum class injectedFault { none, failure, crash };
-
-injectedFault injectedFaultFor(int rank, const std::string& backend)
-{
-    const char* value = std::getenv("PMSH_TEST_FAIL_VOLUME_RANK");
-    if (!value)
-    {
-        return injectedFault::none;
-    }
-    std::vector<std::string> fields;
-    std::istringstream spec(value);
-    for (std::string field; std::getline(spec, field, ':');)
-    {
-        fields.push_back(field);
-    }
-    const bool crash = !fields.empty() && fields.back() == "crash";
-    if (crash)
-    {
-        fields.pop_back();
-    }
-    const bool hit =
-        !fields.empty() && std::atoi(fields[0].c_str()) == rank
-     && (fields.size() < 2 || fields[1] == backend);
-    return !hit ? injectedFault::none : crash ? injectedFault::crash : injectedFault::failure;
-}
-
 struct attempt
 {
-    std::string backend;
+    const VolumeMesher* mesher;
     volumeMeshParameters parameters;
     std::string change;     // what differs from the first attempt
 };
@@ -90,7 +58,7 @@ void pmsh::writeSurfaceStl
 
 pmsh::partitionVolumeResult pmsh::meshPartitionVolume
 (
-    const std::string& backend,
+    const std::vector<std::unique_ptr<VolumeMesher>>& meshers,
     const std::vector<point>& surfacePoints,
     const std::vector<triFace>& surfaceTriangles,
     const volumeMeshParameters& parameters,
@@ -98,55 +66,46 @@ pmsh::partitionVolumeResult pmsh::meshPartitionVolume
     const std::string& failedSurfaceFile
 )
 {
-    // The attempts, in order: as asked; single-threaded; without optimisation (Netgen's
-    // optimiser is where most of its rare crashes and hangs live); with a
-    // tighter interior size; then the other backend
-    const std::string other = backend == "netgen" ? "hxt" : "netgen";
-    std::vector<attempt> attempts{{backend, parameters, ""}};
+    // The attempts, in order: as asked; single-threaded; without
+    // optimisation (Netgen's optimiser is where most of its rare crashes
+    // and hangs live); with a tighter interior size; then the other meshers
+    const VolumeMesher* first = meshers.at(0).get();
+    std::vector<attempt> attempts{{first, parameters, ""}};
     volumeMeshParameters p = parameters;
     if (p.threads > 1)
     {
         // Gmsh 4.8's multithreaded HXT can duplicate interior points
         p.threads = 1;
-        attempts.push_back({backend, p, "1 thread"});
+        attempts.push_back({first, p, "1 thread"});
     }
     if (p.optimisationSteps > 0)
     {
         p.optimisationSteps = 0;
-        attempts.push_back({backend, p, "optimisationSteps 0"});
+        attempts.push_back({first, p, "optimisationSteps 0"});
     }
     p.grading = std::min(p.grading, 0.2);
-    attempts.push_back({backend, p, "optimisationSteps 0, grading <= 0.2"});
-    attempts.push_back({other, parameters, "the " + other + " backend"});
+    attempts.push_back({first, p, "optimisationSteps 0, grading <= 0.2"});
+    for (std::size_t m = 1; m < meshers.size(); ++m)
+    {
+        attempts.push_back
+        (
+            {meshers[m].get(), parameters, "the " + meshers[m]->name() + " backend"}
+        );
+    }
 
     std::string failures;
     for (std::size_t a = 0; a < attempts.size(); ++a)
     {
+        const attempt& at = attempts[a];
         try
         {
-            const injectedFault fault = injectedFaultFor(rank, attempts[a].backend);
-            if (fault == injectedFault::failure)
-            {
-                throw FatalError("failure injected by PMSH_TEST_FAIL_VOLUME_RANK");
-            }
-            const auto mesher = VolumeMesher::New(attempts[a].backend);
             partitionVolumeResult result;
             result.mesh = meshInChildProcess
             (
-                [&]
-                {
-                    if (fault == injectedFault::crash)
-                    {
-                        std::raise(SIGSEGV);
-                    }
-                    return mesher->mesh
-                    (
-                        surfacePoints, surfaceTriangles, attempts[a].parameters
-                    );
-                },
-                attempts[a].parameters.what
+                [&] { return at.mesher->mesh(surfacePoints, surfaceTriangles, at.parameters); },
+                at.parameters.what
             );
-            result.backend = attempts[a].backend;
+            result.backend = at.mesher->name();
             result.attempts = int(a) + 1;
             result.nCells = label(result.mesh.tets.size());
             result.failures = failures;
@@ -155,8 +114,8 @@ pmsh::partitionVolumeResult pmsh::meshPartitionVolume
         catch (const FatalError& e)
         {
             failures += msg()
-                << "\n  attempt " << a + 1 << " (" << attempts[a].backend
-                << (attempts[a].change.empty() ? "" : "; " + attempts[a].change)
+                << "\n  attempt " << a + 1 << " (" << at.mesher->name()
+                << (at.change.empty() ? "" : "; " + at.change)
                 << "): " << e.message();
         }
     }

@@ -2,6 +2,8 @@
 
 #include "UPstream.H"
 
+#include <cstdlib>
+
 namespace
 {
 const pmsh::Communicator* theWorld = nullptr;
@@ -15,6 +17,9 @@ const pmsh::Communicator& pmsh::test::world()
 
 int main(int argc, char** argv)
 {
+    // Volume meshing forks children that make no MPI calls, as in pmshFoam
+    ::setenv("OMPI_MCA_mpi_warn_on_fork", "0", 0);
+
     // OpenFOAM's Pstream starts MPI, as argList does for -parallel; on
     // one rank the same tests run serially (MPI started for Netgen only,
     // as pmshFoam does)

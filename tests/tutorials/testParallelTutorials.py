@@ -8,33 +8,14 @@ Run one test:  python3 testParallelTutorials.py sphere.test_np2
 """
 
 import filecmp
-import json
 import os
 import re
 import sys
-import time
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from tutorialCase import PolyMeshFiles, cells_in_checkmesh_log  # noqa: E402
 from testSerialTutorials import CaseTest  # noqa: E402
-
-
-def snapshot(case_dir):
-    """{relative path: bytes} of pmshFoam's output: processor*/ and
-    system/decomposeParDict."""
-    files = {}
-    with open(os.path.join(case_dir, "system/decomposeParDict"), "rb") as f:
-        files["system/decomposeParDict"] = f.read()
-    for top in sorted(os.listdir(case_dir)):
-        if not top.startswith("processor"):
-            continue
-        for root, _, names in os.walk(os.path.join(case_dir, top)):
-            for name in names:
-                path = os.path.join(root, name)
-                with open(path, "rb") as f:
-                    files[os.path.relpath(path, case_dir)] = f.read()
-    return files
 
 
 def write_list_file(path, cls, obj, items, fmt):
@@ -143,42 +124,6 @@ class parallelRun(ParallelCaseTest):
         """The interface's long edges must not coarsen the cells near it
         (hxtVolumeMesher.C: the interior size is capped at the fine size)"""
         self.total_cells_within_fifteen_percent_of_serial("hxt")
-
-    def test_oneRankFailingStopsAllRanksAndKeepsThePreviousOutput(self):
-        np = 3
-        c = self.case("sphere", refinementLevels=1)
-        c.run("pmshFoam", np=np)
-        before = snapshot(c.dir)
-        c.set_entry("system/pmshDict", "maxCellSize", 0.2)
-        start = time.time()
-        code, log = c.run("pmshFoam", "-overwrite", np=np, check=False, timeout=300,
-                          env={"PMSH_TEST_FAIL_VOLUME_RANK": "1"})
-        elapsed = time.time() - start
-        self.assertNotEqual(code, 0, log)
-        self.assertIn("FOAM FATAL ERROR", log)
-        self.assertIn("partition 1", log)
-        self.assertLess(elapsed, 120, "ranks did not stop together promptly")
-        self.assertTrue(c.exists("postProcessing/pmshFoam/failedPartition1.stl"))
-        self.assertEqual(snapshot(c.dir), before, "previous output changed")
-        self.assertEqual([f for f in os.listdir(c.dir) if f.startswith(".")], [])
-
-    def test_aCrashingVolumeMesherFallsBackAndTheMeshIsOK(self):
-        """Each volume-meshing attempt runs in a child process: a mesher
-        dying of SIGSEGV on rank 1 (as Gmsh 4.8's HXT did) is a failed
-        attempt, and Netgen takes over."""
-        c = self.case("sphere", refinementLevels=1, volumeMesher="hxt")
-        _, log = c.run("pmshFoam", np=2,
-                       env={"PMSH_TEST_FAIL_VOLUME_RANK": "1:hxt:crash"})
-        self.assertRegex(log, r"crashed on the surface of partition 1 \(signal 11")
-        self.assertRegex(log, r"partition 1 meshed by netgen at attempt")
-        self.assertNotIn("partition 0 meshed by", log)
-        self.assertNotIn("Process received signal", log)
-        self.assertRegex(c.check_mesh(np=2), r"Coupled point location match.*OK")
-        with open(os.path.join(c.dir, "postProcessing/pmshFoam/summary.json")) as f:
-            summary = json.load(f)
-        self.assertEqual(summary["volumeMesherPerRank"], ["hxt", "netgen"])
-        self.assertEqual(summary["volumeAttemptsPerRank"][0], 1)
-        self.assertGreater(summary["volumeAttemptsPerRank"][1], 1)
 
     def test_parallelOnOneRankIsAClearError(self):
         c = self.case("sphere")

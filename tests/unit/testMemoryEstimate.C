@@ -5,34 +5,20 @@
 
 #include "memoryEstimate.H"
 #include "stageClock.H"
-#include "pmshError.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
 #include <string>
 
 using namespace pmsh;
+using pmsh::test::errorOf;
 
 namespace
 {
 
 const double GiB = 1024.0*1024*1024;
-
-std::string errorOf(const std::function<void()>& f)
-{
-    try
-    {
-        f();
-    }
-    catch (const FatalError& e)
-    {
-        return e.message();
-    }
-    return "";
-}
-
 
 meshSettings sphereSettings(int levels, int line = 19)
 {
@@ -48,23 +34,20 @@ meshSettings sphereSettings(int levels, int line = 19)
 } // End anonymous namespace
 
 
-TEST(memoryEstimate, fineCellsAreCoarseCellsTimesEightToTheLevels)
+TEST(memoryEstimate, aRunRefusedOnOneRankPassesOnMoreMachinesOrACoarserMesh)
 {
-    EXPECT_DOUBLE_EQ(estimateMemory(917, 0, 1).fineCells, 917);
-    EXPECT_DOUBLE_EQ(estimateMemory(917, 3, 1).fineCells, 917.0*512);
-    EXPECT_DOUBLE_EQ(estimateMemory(917, 10, 1).fineCells, 917*std::pow(8.0, 10));
-}
+    // 917 coarse cells at r = 5 (some 30 million cells) do not fit one
+    // 4 GiB machine; spread over 16 such machines they do, and so does a
+    // coarse mesh of 20 cells on one
+    EXPECT_THROW(checkMemoryEstimate(sphereSettings(5), 917, 1, 1, 4*GiB), FatalError);
+    EXPECT_NO_THROW(checkMemoryEstimate(sphereSettings(5), 917, 16, 1, 4*GiB));
+    EXPECT_NO_THROW(checkMemoryEstimate(sphereSettings(5), 20, 1, 1, 4*GiB));
 
-
-TEST(memoryEstimate, perRankMemoryIsBasePlusItsShareOfTheFineCells)
-{
-    const memoryEstimate one = estimateMemory(1000, 2, 1);
-    EXPECT_DOUBLE_EQ(one.bytesPerRank, baseBytesPerRank + bytesPerFineCell*64000);
-
-    // Four ranks share the cells, each keeps its base
-    const memoryEstimate four = estimateMemory(1000, 2, 4);
-    EXPECT_DOUBLE_EQ(four.bytesPerRank, baseBytesPerRank + bytesPerFineCell*16000);
-    EXPECT_LT(four.bytesPerRank, one.bytesPerRank);
+    // What does not fit at a level does not fit at any higher one
+    for (int r = 6; r <= 10; ++r)
+    {
+        EXPECT_THROW(checkMemoryEstimate(sphereSettings(r), 917, 1, 1, 4*GiB), FatalError) << r;
+    }
 }
 
 

@@ -1,129 +1,44 @@
-// Stage 4 backends and their failure handling: every backend keeps the
-// surface contract, a failing backend falls back to the other, and a
-// partition that fails everywhere leaves its surface as STL and says so.
+// Stage 4 and its failure handling: a failing or crashing mesher falls
+// back to the next one, and a partition that fails everywhere leaves its
+// surface as STL and says so.
 
 #include "partitionVolume.H"
 #include "childProcess.H"
 #include "pmshError.H"
+#include "testMeshers.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
 #include <csignal>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <map>
 
 using namespace pmsh;
+using namespace pmsh::test;
 
 namespace
 {
-
-// A closed, outward icosphere (radius 1) refined twice: 162 points
-void icosphere(std::vector<point>& pts, std::vector<triFace>& tris)
-{
-    const double t = (1 + std::sqrt(5.0))/2;
-    pts = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-           {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    tris = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9},
-            {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2},
-            {3, 2, 6}, {3, 6, 8}, {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10},
-            {8, 6, 7}, {9, 8, 1}};
-    for (point& p : pts) p = (1/std::sqrt(magSqr(p)))*p;
-    for (int level = 0; level < 2; ++level)
-    {
-        std::map<std::pair<label, label>, label> mid;
-        auto midpoint = [&](label a, label b)
-        {
-            auto key = std::make_pair(std::min(a, b), std::max(a, b));
-            auto it = mid.find(key);
-            if (it != mid.end()) return it->second;
-            point m = midPoint(pts[a], pts[b]);
-            pts.push_back((1/std::sqrt(magSqr(m)))*m);
-            return mid[key] = label(pts.size() - 1);
-        };
-        std::vector<triFace> finer;
-        for (const triFace& f : tris)
-        {
-            const label ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
-            finer.insert(finer.end(), {{f[0], ab, ca}, {f[1], bc, ab}, {f[2], ca, bc}, {ab, bc, ca}});
-        }
-        tris = finer;
-    }
-}
 
 std::string tempFile(const std::string& name)
 {
     return (std::filesystem::path(::testing::TempDir()) / name).string();
 }
 
-struct envVar
-{
-    explicit envVar(const char* value) { ::setenv("PMSH_TEST_FAIL_VOLUME_RANK", value, 1); }
-    ~envVar() { ::unsetenv("PMSH_TEST_FAIL_VOLUME_RANK"); }
-};
-
 } // End anonymous namespace
-
-
-class volumeBackend : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(volumeBackend, keepsTheSurfaceAndFillsTheVolume)
-{
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
-    volumeMeshParameters p;
-    p.maxCellSize = 0.3;
-    const TetMesh m = VolumeMesher::New(GetParam())->mesh(pts, tris, p);
-    // The contract is verified inside; check it here too, independently
-    ASSERT_GE(m.points.size(), pts.size());
-    for (std::size_t i = 0; i < pts.size(); ++i)
-    {
-        EXPECT_EQ(m.points[i], pts[i]);
-    }
-    double volume = 0;
-    for (const tetCell& t : m.tets)
-    {
-        const double v = tetVolume6(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
-        EXPECT_GT(v, 0);
-        volume += v/6;
-    }
-    EXPECT_NEAR(volume, 4.0*std::acos(-1.0)/3.0, 0.15);
-}
-
-TEST_P(volumeBackend, surfaceWithAHoleIsAFatalErrorNotACrash)
-{
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
-    tris.pop_back();
-    EXPECT_THROW(VolumeMesher::New(GetParam())->mesh(pts, tris, {}), FatalError);
-}
-
-TEST_P(volumeBackend, inwardSurfaceIsAFatalError)
-{
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
-    for (triFace& t : tris) std::swap(t[1], t[2]);
-    EXPECT_THROW(VolumeMesher::New(GetParam())->mesh(pts, tris, {}), FatalError);
-}
-
-INSTANTIATE_TEST_SUITE_P(backends, volumeBackend, ::testing::ValuesIn(VolumeMesher::names()));
 
 
 TEST(partitionVolume, firstAttemptSucceedsWithTheChosenBackend)
 {
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
+    const closedSurface sphere = icosphere(2);
+    const std::vector<point>& pts = sphere.points;
+    const std::vector<triFace>& tris = sphere.triangles;
     for (const std::string& backend : VolumeMesher::names())
     {
-        const partitionVolumeResult r =
-            meshPartitionVolume(backend, pts, tris, {}, 0, tempFile("unused.stl"));
+        const partitionVolumeResult r = meshPartitionVolume
+        (
+            VolumeMesher::NewAll(backend), pts, tris, {}, 0, tempFile("unused.stl")
+        );
         EXPECT_EQ(r.backend, backend);
         EXPECT_EQ(r.attempts, 1);
         EXPECT_GT(r.mesh.tets.size(), 0u);
@@ -132,25 +47,26 @@ TEST(partitionVolume, firstAttemptSucceedsWithTheChosenBackend)
 
 TEST(partitionVolume, failingEverywhereWritesTheSurfaceAndNamesPartitionAndFile)
 {
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
+    const closedSurface sphere = icosphere(2);
+    const std::vector<point>& pts = sphere.points;
+    const std::vector<triFace>& tris = sphere.triangles;
     const std::string stl = tempFile("failedPartition3.stl");
     std::filesystem::remove(stl);
 
-    envVar fail("3");
-    try
+    const std::string m = errorOf([&]
     {
-        meshPartitionVolume("netgen", pts, tris, {}, 3, stl);
-        FAIL() << "expected FatalError";
-    }
-    catch (const FatalError& e)
-    {
-        const std::string m = e.what();
-        EXPECT_NE(m.find("partition 3"), std::string::npos) << m;
-        EXPECT_NE(m.find(stl), std::string::npos) << m;
-        EXPECT_NE(m.find("hxt backend"), std::string::npos) << "no fallback tried:\n" << m;
-    }
+        meshPartitionVolume
+        (
+            meshers(std::make_unique<failingMesher>(), std::make_unique<crashingMesher>()),
+            pts, tris, {}, 3, stl
+        );
+    });
+    EXPECT_HAS(m, "Volume meshing of partition 3 failed in all 4 attempts");
+    EXPECT_HAS(m, "attempt 3 (failing; optimisationSteps 0, grading <= 0.2): cannot mesh");
+    EXPECT_HAS(m, "attempt 4 (crashing; the crashing backend)");
+    EXPECT_HAS(m, "signal 11");
+    EXPECT_HAS(m, stl);
+
     // The STL holds the partition's surface, facet for facet
     std::ifstream is(stl);
     ASSERT_TRUE(is.good()) << stl;
@@ -159,89 +75,62 @@ TEST(partitionVolume, failingEverywhereWritesTheSurfaceAndNamesPartitionAndFile)
     EXPECT_EQ(facets, tris.size());
 }
 
-TEST(partitionVolume, aFailingBackendFallsBackToTheOther)
+TEST(partitionVolume, aFailingMesherFallsBackToTheNextOne)
 {
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
-    envVar fail("2:netgen");
-    const partitionVolumeResult r =
-        meshPartitionVolume("netgen", pts, tris, {}, 2, tempFile("z.stl"));
+    const closedSurface sphere = icosphere(2);
+    const std::vector<point>& pts = sphere.points;
+    const std::vector<triFace>& tris = sphere.triangles;
+    const partitionVolumeResult r = meshPartitionVolume
+    (
+        meshers(std::make_unique<failingMesher>(), VolumeMesher::New("hxt")),
+        pts, tris, {}, 2, tempFile("z.stl")
+    );
     EXPECT_EQ(r.backend, "hxt");
-    EXPECT_EQ(r.attempts, 4);   // netgen as asked, without optimisation, graded, then hxt
+    EXPECT_EQ(r.attempts, 4);   // as asked, without optimisation, graded, then hxt
+    EXPECT_HAS(r.failures, "attempt 1 (failing): cannot mesh a closed surface");
     EXPECT_GT(r.mesh.tets.size(), 0u);
 }
 
-
-TEST(partitionVolume, injectedFailureOnlyHitsTheNamedRank)
+TEST(partitionVolume, aCrashingMesherFallsBackToTheNextOne)
 {
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
-    envVar fail("5");
-    EXPECT_NO_THROW(meshPartitionVolume("hxt", pts, tris, {}, 4, tempFile("x.stl")));
-    EXPECT_THROW(meshPartitionVolume("hxt", pts, tris, {}, 5, tempFile("y.stl")), FatalError);
+    const closedSurface sphere = icosphere(2);
+    const std::vector<point>& pts = sphere.points;
+    const std::vector<triFace>& tris = sphere.triangles;
+    volumeMeshParameters p;
+    p.what = "the surface of partition 1";
+    const partitionVolumeResult r = meshPartitionVolume
+    (
+        meshers(std::make_unique<crashingMesher>(), VolumeMesher::New("netgen")),
+        pts, tris, p, 1, tempFile("c.stl")
+    );
+    EXPECT_EQ(r.backend, "netgen");
+    EXPECT_EQ(r.attempts, 4);
+    EXPECT_HAS(r.failures, "crashed on the surface of partition 1 (signal 11");
 }
 
 
 TEST(partitionVolume, multithreadedHxtGivesAConformingMeshOrFallsBackToOneThread)
 {
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
+    const closedSurface sphere = icosphere(2);
+    const std::vector<point>& pts = sphere.points;
+    const std::vector<triFace>& tris = sphere.triangles;
     volumeMeshParameters p;
     p.threads = 2;
     for (int run = 0; run < 5; ++run)
     {
         const partitionVolumeResult r =
-            meshPartitionVolume("hxt", pts, tris, p, 0, tempFile("t.stl"));
+            meshPartitionVolume(VolumeMesher::NewAll("hxt"), pts, tris, p, 0, tempFile("t.stl"));
         EXPECT_EQ(r.backend, "hxt");
         EXPECT_LE(r.attempts, 2);
-        // verifyVolumeMesh (conformity included) passed inside; check again
-        EXPECT_NO_THROW(verifyVolumeMesh(pts, tris, r.mesh, "hxt with 2 threads"));
-    }
-}
-
-
-TEST(verifyVolumeMesh, rejectsAMeshWithADuplicatedInteriorPoint)
-{
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
-    volumeMeshParameters p;
-    p.maxCellSize = 0.3;
-    TetMesh m = VolumeMesher::New("netgen")->mesh(pts, tris, p);
-    ASSERT_GT(m.points.size(), pts.size()) << "no interior point to duplicate";
-
-    // Give one tet its own copy of an interior point: volumes still add up
-    const label interior = label(pts.size());
-    for (tetCell& t : m.tets)
-    {
-        auto it = std::find(t.begin(), t.end(), interior);
-        if (it != t.end())
-        {
-            m.points.push_back(m.points[interior]);
-            *it = label(m.points.size() - 1);
-            break;
-        }
-    }
-    try
-    {
-        verifyVolumeMesh(pts, tris, m, "a mesh with a split point");
-        FAIL() << "expected FatalError";
-    }
-    catch (const FatalError& e)
-    {
-        EXPECT_NE(std::string(e.what()).find("not conforming"), std::string::npos) << e.what();
     }
 }
 
 
 TEST(meshInChildProcess, returnsTheChildsMeshBitForBit)
 {
-    std::vector<point> pts;
-    std::vector<triFace> tris;
-    icosphere(pts, tris);
+    const closedSurface sphere = icosphere(2);
+    const std::vector<point>& pts = sphere.points;
+    const std::vector<triFace>& tris = sphere.triangles;
     const TetMesh direct = VolumeMesher::New("netgen")->mesh(pts, tris, {});
     const TetMesh child = meshInChildProcess
     (

@@ -72,9 +72,9 @@ tetMesh kuhnGrid(int nx, int ny, int nz)
 
 //- Physical patches used with the box meshes: the six sides, and an empty
 //  patch in the middle that no triangle uses.
-std::vector<polyPatchInfo> boxPatches()
+std::vector<meshPatch> boxPatches()
 {
-    std::vector<polyPatchInfo> patches(7);
+    std::vector<meshPatch> patches(7);
     const char* names[] = {"xMin", "xMax", "yMin", "nothing", "yMax", "zMin", "zMax"};
     for (int i = 0; i < 7; ++i)
     {
@@ -100,8 +100,8 @@ label boxRegion(const point& c, const point& lo, const point& hi)
 }
 
 
-//- Every OpenFOAM ordering and orientation rule, checked on a PolyMesh.
-void expectValidPolyMesh(const PolyMesh& mesh, const std::vector<tetCell>& tets)
+//- Every OpenFOAM ordering and orientation rule, checked on a tetPolyMesh.
+void expectValidPolyMesh(const tetPolyMesh& mesh, const std::vector<tetCell>& tets)
 {
     const auto& p = mesh.points;
     const label nInt = mesh.nInternalFaces();
@@ -174,7 +174,7 @@ void expectValidPolyMesh(const PolyMesh& mesh, const std::vector<tetCell>& tets)
 
     // Patches: contiguous from nInternalFaces, in order, covering all faces
     label start = nInt;
-    for (const polyPatchInfo& pp : mesh.patches)
+    for (const meshPatch& pp : mesh.patches)
     {
         EXPECT_EQ(pp.start, start) << pp.name;
         EXPECT_GE(pp.size, 0) << pp.name;
@@ -185,7 +185,7 @@ void expectValidPolyMesh(const PolyMesh& mesh, const std::vector<tetCell>& tets)
 
 
 //- Patch of each face's region, checked by the face centroid.
-void expectBoxPatchesByGeometry(const PolyMesh& mesh, std::size_t nPhysical)
+void expectBoxPatchesByGeometry(const tetPolyMesh& mesh, std::size_t nPhysical)
 {
     point lo = mesh.points[0], hi = mesh.points[0];
     for (const point& p : mesh.points)
@@ -198,7 +198,7 @@ void expectBoxPatchesByGeometry(const PolyMesh& mesh, std::size_t nPhysical)
     }
     for (std::size_t pi = 0; pi < nPhysical; ++pi)
     {
-        const polyPatchInfo& pp = mesh.patches[pi];
+        const meshPatch& pp = mesh.patches[pi];
         for (label f = pp.start; f < pp.start + pp.size; ++f)
         {
             const triFace& face = mesh.faces[f];
@@ -270,7 +270,7 @@ TEST(tetsToPolyMesh, singleTetHasFourOutwardBoundaryFaces)
 {
     const tetMesh m = singleTet();
     const rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
+    const tetPolyMesh mesh = build(in, boxPatches());
 
     EXPECT_EQ(mesh.nCells, 1);
     EXPECT_EQ(mesh.nFaces(), 4);
@@ -284,13 +284,13 @@ TEST(tetsToPolyMesh, twoTetsShareOneFaceOrientedFromLowerToHigherCell)
 {
     const tetMesh m = twoTets();
     rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    std::vector<polyPatchInfo> patches(1);
+    std::vector<meshPatch> patches(1);
     patches[0].name = "walls";
     for (label& r : in.regions)
     {
         r = 0;
     }
-    const PolyMesh mesh = build(in, patches);
+    const tetPolyMesh mesh = build(in, patches);
 
     ASSERT_EQ(mesh.nInternalFaces(), 1);
     EXPECT_EQ(mesh.nFaces(), 7);
@@ -306,7 +306,7 @@ TEST(tetsToPolyMesh, fiveTetCubeIsValid)
 {
     const tetMesh m = fiveTetCube();
     const rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
+    const tetPolyMesh mesh = build(in, boxPatches());
 
     EXPECT_EQ(mesh.nInternalFaces(), 4);
     EXPECT_EQ(mesh.nFaces(), 16);
@@ -319,7 +319,7 @@ TEST(tetsToPolyMesh, sixTetCubeHasTwoFacesPerSideAndEmptyPatchKept)
 {
     const tetMesh m = kuhnGrid(1, 1, 1);
     const rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
+    const tetPolyMesh mesh = build(in, boxPatches());
 
     EXPECT_EQ(mesh.nCells, 6);
     EXPECT_EQ(mesh.nInternalFaces(), 6);
@@ -343,7 +343,7 @@ TEST(tetsToPolyMesh, gridIsUpperTriangularAndOriented)
 {
     const tetMesh m = kuhnGrid(3, 2, 2);
     const rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
+    const tetPolyMesh mesh = build(in, boxPatches());
 
     expectValidPolyMesh(mesh, in.tets);
     expectBoxPatchesByGeometry(mesh, 7);
@@ -355,9 +355,9 @@ TEST(tetsToPolyMesh, physicalPatchFacesAreOrderedByOwner)
 {
     const tetMesh m = kuhnGrid(2, 2, 2);
     const rankInput in = makeRankInput(m, {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
+    const tetPolyMesh mesh = build(in, boxPatches());
 
-    for (const polyPatchInfo& pp : mesh.patches)
+    for (const meshPatch& pp : mesh.patches)
     {
         for (label f = pp.start + 1; f < pp.start + pp.size; ++f)
         {
@@ -372,7 +372,7 @@ TEST(tetsToPolyMesh, resultDoesNotDependOnBoundaryTriangleOrder)
     const tetMesh m = kuhnGrid(2, 2, 1);
     const std::vector<int> ranks = slabRanks(m, 2);
     rankInput in = makeRankInput(m, ranks, 1, boxRegion);
-    const PolyMesh a = build(in, boxPatches(), 1);
+    const tetPolyMesh a = build(in, boxPatches(), 1);
 
     // Reverse and rotate the triangles: same mesh expected
     std::reverse(in.tris.begin(), in.tris.end());
@@ -381,7 +381,7 @@ TEST(tetsToPolyMesh, resultDoesNotDependOnBoundaryTriangleOrder)
     {
         t = {t[1], t[2], t[0]};
     }
-    const PolyMesh b = build(in, boxPatches(), 1);
+    const tetPolyMesh b = build(in, boxPatches(), 1);
 
     EXPECT_EQ(a.faces, b.faces);
     EXPECT_EQ(a.owner, b.owner);
@@ -392,8 +392,8 @@ TEST(tetsToPolyMesh, resultDoesNotDependOnBoundaryTriangleOrder)
 TEST(tetsToPolyMesh, serialMeshHasNoProcessorPatches)
 {
     const rankInput in = makeRankInput(kuhnGrid(2, 1, 1), {}, 0, boxRegion);
-    const PolyMesh mesh = build(in, boxPatches());
-    for (const polyPatchInfo& pp : mesh.patches)
+    const tetPolyMesh mesh = build(in, boxPatches());
+    for (const meshPatch& pp : mesh.patches)
     {
         EXPECT_FALSE(pp.isProcessor()) << pp.name;
     }
@@ -409,7 +409,7 @@ TEST(tetsToPolyMesh, twoRankCubeHasProcessorPatchesAfterPhysicalOnes)
     for (int rank = 0; rank < 2; ++rank)
     {
         const rankInput in = makeRankInput(m, ranks, rank, boxRegion);
-        const PolyMesh mesh = build(in, boxPatches(), rank);
+        const tetPolyMesh mesh = build(in, boxPatches(), rank);
         expectValidPolyMesh(mesh, in.tets);
 
         ASSERT_EQ(mesh.patches.size(), 8u) << "rank " << rank;
@@ -417,10 +417,9 @@ TEST(tetsToPolyMesh, twoRankCubeHasProcessorPatchesAfterPhysicalOnes)
         {
             EXPECT_EQ(mesh.patches[i].name, boxPatches()[i].name);
         }
-        const polyPatchInfo& pp = mesh.patches[7];
+        const meshPatch& pp = mesh.patches[7];
         EXPECT_EQ(pp.name, rank == 0 ? "procBoundary0to1" : "procBoundary1to0");
         EXPECT_EQ(pp.type, "processor");
-        EXPECT_EQ(pp.myProcNo, rank);
         EXPECT_EQ(pp.neighbProcNo, 1 - rank);
         EXPECT_GT(pp.size, 0);
     }
@@ -449,7 +448,7 @@ TEST(tetsToPolyMesh, processorPatchesAreInAscendingNeighbourRank)
     }
     ASSERT_EQ(sorted.regions.front(), interfaceRegion(2));
 
-    const PolyMesh mesh = build(sorted, boxPatches(), 1);
+    const tetPolyMesh mesh = build(sorted, boxPatches(), 1);
     expectValidPolyMesh(mesh, sorted.tets);
     expectBoxPatchesByGeometry(mesh, 7);
 
@@ -488,7 +487,7 @@ TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
     {
         const testCase& tc = cases[ci];
         std::vector<rankInput> in;
-        std::vector<PolyMesh> mesh;
+        std::vector<tetPolyMesh> mesh;
         for (int r = 0; r < tc.nRanks; ++r)
         {
             in.push_back(makeRankInput(tc.m, tc.ranks, r, boxRegion));
@@ -499,7 +498,7 @@ TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
         std::size_t nChecked = 0;
         for (int a = 0; a < tc.nRanks; ++a)
         {
-            for (const polyPatchInfo& pa : mesh[a].patches)
+            for (const meshPatch& pa : mesh[a].patches)
             {
                 if (!pa.isProcessor())
                 {
@@ -509,7 +508,7 @@ TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
                 const auto pb = std::find_if
                 (
                     mesh[b].patches.begin(), mesh[b].patches.end(),
-                    [&](const polyPatchInfo& p) { return p.name == processorPatchName(b, a); }
+                    [&](const meshPatch& p) { return p.name == processorPatchName(b, a); }
                 );
                 ASSERT_NE(pb, mesh[b].patches.end()) << "case " << ci;
                 ASSERT_EQ(pa.size, pb->size) << "case " << ci << ' ' << pa.name;
@@ -551,40 +550,6 @@ TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
             }
         }
         EXPECT_GT(nChecked, 0u) << "case " << ci;
-    }
-}
-
-
-TEST(tetsToPolyMesh, mapsLeadFromTetFacesAndTrianglesToPolyMeshFaces)
-{
-    const tetMesh m = kuhnGrid(2, 2, 1);
-    const std::vector<int> ranks = slabRanks(m, 2);
-    const rankInput in = makeRankInput(m, ranks, 0, boxRegion);
-    tetsToPolyMeshMaps maps;
-    const PolyMesh mesh = build(in, boxPatches(), 0, &maps);
-
-    ASSERT_EQ(maps.tetFaceToFace.size(), 4*in.tets.size());
-    ASSERT_EQ(maps.boundaryTriangleToFace.size(), in.tris.size());
-
-    auto sortedFace = [](triFace f) { std::sort(f.begin(), f.end()); return f; };
-    for (std::size_t t = 0; t < in.tets.size(); ++t)
-    {
-        for (int f = 0; f < 4; ++f)
-        {
-            const label facei = maps.tetFaceToFace[4*t + f];
-            ASSERT_GE(facei, 0);
-            EXPECT_EQ(sortedFace(mesh.faces[facei]), sortedFace(tetFace(in.tets[t], f)));
-            const bool isOwner = mesh.owner[facei] == label(t);
-            const bool isNeighbour =
-                facei < mesh.nInternalFaces() && mesh.neighbour[facei] == label(t);
-            EXPECT_TRUE(isOwner || isNeighbour);
-        }
-    }
-    for (std::size_t b = 0; b < in.tris.size(); ++b)
-    {
-        const label facei = maps.boundaryTriangleToFace[b];
-        ASSERT_GE(facei, mesh.nInternalFaces());
-        EXPECT_EQ(sortedFace(mesh.faces[facei]), sortedFace(in.tris[b]));
     }
 }
 
@@ -695,7 +660,7 @@ TEST(tetsToPolyMesh, duplicateTetIsAnError)
 TEST(tetsToPolyMesh, physicalPatchOfTypeProcessorIsAnError)
 {
     rankInput in = makeRankInput(singleTet(), {}, 0, boxRegion);
-    std::vector<polyPatchInfo> patches = boxPatches();
+    std::vector<meshPatch> patches = boxPatches();
     patches[6].type = "processor";
     const std::string e = errorOf([&]() { build(in, patches); });
     EXPECT_NE(e.find("type processor"), std::string::npos) << e;

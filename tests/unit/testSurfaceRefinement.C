@@ -3,7 +3,7 @@
 
 #include "surfaceRefinement.H"
 #include "Geometry.H"
-#include "boundaryRegion.H"
+#include "meshPatch.H"
 #include "surfaceChecks.H"
 #include "pmshError.H"
 
@@ -23,9 +23,7 @@ namespace
 // The unit sphere as an analytic geometry: projection is normalisation
 class analyticSphere : public Geometry
 {
-    std::vector<std::string> names_{"sphere"};
 public:
-    const std::vector<std::string>& patchNames() const override { return names_; }
     CoarseMesh coarseMesh(const coarseMeshParameters&) const override { return {}; }
     point projectToSurface(const point& p, label) const override
     {
@@ -42,7 +40,7 @@ CoarseMesh octahedron()
 {
     CoarseMesh m;
     m.points = {{0, 0, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    m.patchNames = {"sphere"};
+    m.patches = {{"sphere"}};
     for (label x : {1, 2})
     {
         for (label y : {3, 4})
