@@ -3,6 +3,7 @@
 
 #include <cerrno>
 #include <csignal>
+#include <malloc.h>
 #include <cstdint>
 #include <cstring>
 #include <sys/wait.h>
@@ -71,6 +72,13 @@ bool readArray(int fd, std::vector<T>& v)
     {
         std::signal(sig, SIG_DFL);
     }
+
+    // The mesher grows and shrinks large arrays all the time: let them
+    // reuse the heap (pmshFoam itself maps each large array on its own, so
+    // that freeing it returns the memory; here that would only cost page
+    // faults, and the child's memory is returned when it exits)
+    mallopt(M_MMAP_THRESHOLD, 64*1024*1024);
+
     bool ok = false;
     try
     {
