@@ -17,10 +17,10 @@ pmsh::CoarseMesh pmsh::generateCoarseMesh
     CoarseMesh coarse;
     failTogether(comm, [&]
     {
-        if (comm.master())
+        comm.masterWorksOthersSleep([&]
         {
             coarse = geometry.coarseMesh(parameters);
-        }
+        });
     });
     broadcastCoarseMesh(comm, coarse);
     return coarse;

@@ -3,8 +3,12 @@
 
 #include "Pstream.H"
 #include "PstreamReduceOps.H"
+#include "UIPstream.H"
+#include "UOPstream.H"
 
+#include <chrono>
 #include <cstdlib>
+#include <thread>
 
 pmsh::Communicator::Communicator()
 :
@@ -75,6 +79,52 @@ Foam::List<T> gatherAll(T x)
 }
 
 } // End anonymous namespace
+
+
+namespace
+{
+
+// The tag of the master's "done" message (not one OpenFOAM uses)
+constexpr int masterDoneTag = 4712;
+
+} // End anonymous namespace
+
+
+void pmsh::Communicator::masterDone() const
+{
+    if (!parallel_)
+    {
+        return;
+    }
+    char done = 1;
+    for (int r = 1; r < size_; ++r)
+    {
+        Foam::UOPstream::write
+        (
+            Foam::UPstream::commsTypes::blocking, r, &done, 1, masterDoneTag
+        );
+    }
+}
+
+
+void pmsh::Communicator::sleepUntilMasterDone() const
+{
+    if (!parallel_)
+    {
+        return;
+    }
+    char done = 0;
+    const Foam::label request = Foam::UPstream::nRequests();
+    Foam::UIPstream::read
+    (
+        Foam::UPstream::commsTypes::nonBlocking, 0, &done, 1, masterDoneTag
+    );
+    while (!Foam::UPstream::finishedRequest(request))
+    {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    Foam::UPstream::resetRequests(request);
+}
 
 
 std::int64_t pmsh::Communicator::exclusiveScan(std::int64_t x) const
