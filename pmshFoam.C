@@ -83,6 +83,21 @@ Usage
 
 using namespace Foam;
 
+// End MPI (also a serial run's, started for Netgen) and exit. A failure
+// every rank agreed on ends MPI normally too: UPstream::exit would abort
+// for a non-zero code, and returning from main would let argList end a
+// parallel run with 0.
+[[noreturn]] static void endRun(int exitCode)
+{
+    if (exitCode)
+    {
+        MPI_Finalize();
+        std::exit(exitCode);
+    }
+    UPstream::exit(0);
+    std::exit(0);
+}
+
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
 int main(int argc, char *argv[])
@@ -155,8 +170,7 @@ int main(int argc, char *argv[])
                        "pmshFoam"
                    ).report() << std::flush;
         }
-        MPI_Finalize();
-        std::exit(1);
+        endRun(1);
     }
     IFstream controlDictStream(controlDictFile);
     dictionary controlDict(controlDictStream);
@@ -237,11 +251,8 @@ int main(int argc, char *argv[])
         stages.end();
 
         stages.begin("partition", "Stage 2: partition into " + std::to_string(comm.size()) + " parts");
-        std::vector<pmsh::label> cellPart;
-        pmsh::failTogether(comm, [&]
-        {
-            cellPart = pmsh::partitionCoarseMesh(comm, coarse, decomposition);
-        });
+        const std::vector<pmsh::label> cellPart =
+            pmsh::partitionCoarseMesh(comm, coarse, decomposition);
         pmsh::logPartSizes(comm, cellPart);
         stages.end();
 
@@ -303,7 +314,7 @@ int main(int argc, char *argv[])
             );
             tets = pmsh::TetMesh();
         });
-        const pmsh::meshSizes sizes = pmsh::meshSizesOf(comm, rankMesh);
+        const pmsh::meshSizes sizes = pmsh::meshSizesOf(rankMesh);
         pmsh::procAddressing addressing;
         if (comm.parallel())
         {
@@ -363,17 +374,7 @@ int main(int argc, char *argv[])
         comm.abort(1);
     }
 
-    // Ends MPI (also the serial run's, started for Netgen) and exits. A
-    // failure every rank agreed on ends MPI normally too: UPstream::exit
-    // would abort for a non-zero code, and returning would let argList end
-    // a parallel run with 0
-    if (exitCode)
-    {
-        MPI_Finalize();
-        std::exit(exitCode);
-    }
-    UPstream::exit(0);
-    return 0;
+    endRun(exitCode);
 }
 
 

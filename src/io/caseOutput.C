@@ -108,10 +108,6 @@ void pmsh::caseOutput::commit()
         const std::string from = scratchDir_ + "/" + target;
         const std::string to = caseDir_ + "/" + target;
         const std::string previous = scratchDir_ + "/" + target + ".previous";
-        if (!fs::exists(from) && !fs::exists(to))
-        {
-            continue;
-        }
         if (fs::exists(to))
         {
             fs::create_directories(fs::path(previous).parent_path());

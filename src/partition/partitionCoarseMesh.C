@@ -869,10 +869,10 @@ std::vector<pmsh::label> pmsh::partitionCoarseMesh
     std::vector<label> cellPart;
     failTogether(comm, [&]
     {
-        if (comm.master())
+        comm.masterWorksOthersSleep([&]
         {
             cellPart = partitionCells(coarse, comm.size(), decompositionDict);
-        }
+        });
     });
     comm.broadcast(cellPart);
     return cellPart;

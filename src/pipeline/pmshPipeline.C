@@ -16,21 +16,6 @@ std::string pmsh::rankPrefix(const Communicator& comm)
 }
 
 
-void pmsh::requireMoreThanOneRank(const Communicator& comm)
-{
-    if (comm.parallel() && comm.size() == 1)
-    {
-        throw FatalError
-        (
-            "attempt to run parallel on 1 processor\n"
-            "Start with \"mpirun -np N pmshFoam -parallel\" (N > 1),"
-            " or run pmshFoam without -parallel",
-            "main"
-        );
-    }
-}
-
-
 pmsh::volumeMeshParameters pmsh::volumeParameters
 (
     const meshSettings& settings,
@@ -137,7 +122,7 @@ pmsh::globalLabel pmsh::logVolumeMeshing
 }
 
 
-pmsh::meshSizes pmsh::meshSizesOf(const Communicator&, const tetPolyMesh& mesh)
+pmsh::meshSizes pmsh::meshSizesOf(const tetPolyMesh& mesh)
 {
     return {double(mesh.nFaces()), double(mesh.points.size())};
 }

@@ -9,6 +9,21 @@
 #include <algorithm>
 #include <cstdlib>
 
+namespace
+{
+
+// OpenFOAM's copy of the labels; the vector is freed at once
+Foam::labelList movedToLabelList(std::vector<pmsh::label>& labels)
+{
+    Foam::labelList list(Foam::label(labels.size()));
+    std::copy(labels.begin(), labels.end(), list.begin());
+    labels = {};
+    return list;
+}
+
+} // End anonymous namespace
+
+
 pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
 {
     using namespace Foam;
@@ -36,12 +51,8 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
         );
     }
 
-    labelList owner(label(mesh.owner.size()));
-    std::copy(mesh.owner.begin(), mesh.owner.end(), owner.begin());
-    mesh.owner = {};
-    labelList neighbour(label(mesh.neighbour.size()));
-    std::copy(mesh.neighbour.begin(), mesh.neighbour.end(), neighbour.begin());
-    mesh.neighbour = {};
+    labelList owner = movedToLabelList(mesh.owner);
+    labelList neighbour = movedToLabelList(mesh.neighbour);
 
     mesh_.reset
     (
