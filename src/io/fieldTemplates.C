@@ -172,11 +172,17 @@ void pmsh::writeProcessorField(const fieldTemplate& field, const Foam::fvMesh& m
     using namespace Foam;
 
     // Processor patches: the internal value, unless the template says
+    // (setConstraintTypes, which most cases include, does: adding it again
+    // would make OpenFOAM warn)
     dictionary dict(field.dict);
-    dictionary processor;
-    processor.add("type", word("processor"));
-    processor.add(new primitiveEntry("value", dict.lookup("internalField")));
-    dict.subDict("boundaryField").add("processor", processor, false);
+    dictionary& boundaryField = dict.subDict("boundaryField");
+    if (!boundaryField.found("processor", keyType::LITERAL))
+    {
+        dictionary processor;
+        processor.add("type", word("processor"));
+        processor.add(new primitiveEntry("value", dict.lookup("internalField")));
+        boundaryField.add("processor", processor);
+    }
 
     if (field.className == volScalarField::typeName)
     {

@@ -8,6 +8,8 @@
 
 #include <gmsh.h>
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <cstring>
 #include <iomanip>
@@ -113,8 +115,8 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         gmsh::option::setNumber("Mesh.Algorithm3D", 10);       // HXT
         // Quirk: with more than one thread, Debian's Gmsh 4.8.4 HXT now and
         // then returns a duplicated interior node (faces matching nothing);
-        // VolumeMesher::mesh catches it and meshPartitionVolume retries with
-        // one thread
+        // VolumeMesher::mesh catches it and meshVolumeWithFallbacks retries
+        // with one thread
         gmsh::option::setNumber("General.NumThreads", parameters.threads);
         // Interior size grows from the surface edge lengths, as Netgen's,
         // capped at the fine size (Netgen's maxh) by a constant background
@@ -177,10 +179,21 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
             result.points.push_back({coords[3*k], coords[3*k + 1], coords[3*k + 2]});
         }
 
-        std::vector<std::size_t> elementTags, elementNodes;
-        gmsh::model::mesh::getElementsByType(4, elementTags, elementNodes);
-        result.tets.resize(elementTags.size());
-        for (std::size_t e = 0; e < elementTags.size(); ++e)
+        // The peak memory of a large partition is Gmsh's model plus what is
+        // copied out of it: only the tets' node tags are asked for (no
+        // element tags), and the model is freed, its pages handed back,
+        // before the tets are built from them (24 bytes per cell less)
+        std::vector<std::size_t> noElementTags, elementNodes;
+        gmsh::model::mesh::preallocateElementsByType
+        (
+            4, false, true, noElementTags, elementNodes
+        );
+        gmsh::model::mesh::getElementsByType(4, noElementTags, elementNodes);
+        gmsh::model::remove();
+        ::malloc_trim(0);
+
+        result.tets.resize(elementNodes.size()/4);
+        for (std::size_t e = 0; e < result.tets.size(); ++e)
         {
             tetCell& t = result.tets[e];
             for (int k = 0; k < 4; ++k)
@@ -199,7 +212,6 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
             }
         }
 
-        gmsh::model::remove();
         gmsh::logger::stop();
     }
     catch (const std::string& error)
