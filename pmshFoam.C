@@ -79,6 +79,7 @@ Usage
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <numeric>
 #include <optional>
 
 using namespace Foam;
@@ -112,6 +113,12 @@ int main(int argc, char *argv[])
     argList::noCheckProcessorDirectories();
     #include "addDictOption.H"
     #include "addOverwriteOption.H"
+    argList::addBoolOption
+    (
+        "noMemoryCheck",
+        "Go on even when the memory estimate after the coarse mesh says the"
+        " fine mesh cannot fit in this machine's memory"
+    );
     argList::addOption
     (
         "decomposeParDict",
@@ -234,17 +241,30 @@ int main(int argc, char *argv[])
 
         pmsh::stageLog stages(comm);
 
-        stages.begin("coarse", "Stage 1: coarse mesh (Netgen) of " + settings.geometryFile);
+        stages.begin
+        (
+            "coarse",
+            "Stage 1: coarse mesh (Netgen surface, " + settings.coarseMesher
+          + " volume) of " + settings.geometryFile
+        );
         pmsh::CoarseMesh coarse = pmsh::generateCoarseMesh
         (
-            comm, *geometry, {settings.maxCellSize, settings.grading}
+            comm, *geometry, pmsh::coarseParameters(settings, runTime.globalPath())
         );
         pmsh::setPatchTypes(coarse, settings);
         pmsh::logCoarseMesh(coarse);
+        pmsh::memoryEstimate estimate;
         pmsh::failTogether(comm, [&]
         {
             // Stop before the expensive stages if the fine mesh cannot fit
-            pmsh::checkMemoryEstimate(comm, settings, coarse.nCells());
+            const std::vector<double> expected =
+                pmsh::regularFineCells(coarse, settings.refinementLevels);
+            estimate = pmsh::estimateAndCheckMemory
+            (
+                comm, settings, coarse.nCells(),
+                std::accumulate(expected.begin(), expected.end(), 0.0),
+                !args.found("noMemoryCheck")
+            );
             // The patches are known now: every field must cover them all
             pmsh::checkPatchCoverage(fieldTemplates, coarse.patches);
         });
@@ -277,12 +297,14 @@ int main(int argc, char *argv[])
         pmsh::partitionVolumeResult volume;
         pmsh::failTogether(comm, [&]
         {
-            volume = pmsh::meshPartitionVolume
+            volume = pmsh::meshVolumeWithFallbacks
             (
                 pmsh::VolumeMesher::NewAll(settings.volumeMesher),
                 surface.points, surface.triangles,
-                pmsh::volumeParameters(settings, comm.rank()), comm.rank(),
-                pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank())
+                pmsh::volumeParameters(settings, comm.rank()),
+                pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank()),
+                "Try a smaller maxCellSize (a finer coarse mesh) or another"
+                " volumeMesher in system/pmshDict."
             );
         });
         pmsh::TetMesh& tets = volume.mesh;
@@ -354,7 +376,8 @@ int main(int argc, char *argv[])
 
         pmsh::reportSummary
         (
-            comm, runTime.globalPath(), settings, coarse, volume, nFineCells, stages
+            comm, runTime.globalPath(), settings, coarse, volume, nFineCells, stages,
+            estimate
         );
     }
     catch (const pmsh::collectiveFailure& e)

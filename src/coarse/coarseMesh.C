@@ -2,10 +2,101 @@
 #include "Geometry.H"
 #include "pmshError.H"
 #include "failTogether.H"
+#include "partitionVolume.H"
 #include "tetFaceMatching.H"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
+#include <thread>
+
+#include <sched.h>
+
+namespace
+{
+
+using namespace pmsh;
+
+//- While it lives, this thread (and the processes it forks) may run on
+//  every CPU of the machine. mpirun binds each rank to a core or socket;
+//  while the master meshes alone the other ranks sleep
+//  (masterWorksOthersSleep), so their cores are free for its threads.
+class wholeMachineAffinity
+{
+public:
+
+    wholeMachineAffinity()
+    :
+        saved_(::sched_getaffinity(0, sizeof(original_), &original_) == 0)
+    {
+        cpu_set_t all;
+        CPU_ZERO(&all);
+        const unsigned n = std::max(1u, std::thread::hardware_concurrency());
+        for (unsigned c = 0; c < n && c < CPU_SETSIZE; ++c)
+        {
+            CPU_SET(c, &all);
+        }
+        // Best effort: where it is not allowed, the threads share the core
+        ::sched_setaffinity(0, sizeof(all), &all);
+    }
+
+    ~wholeMachineAffinity()
+    {
+        if (saved_)
+        {
+            ::sched_setaffinity(0, sizeof(original_), &original_);
+        }
+    }
+
+    wholeMachineAffinity(const wholeMachineAffinity&) = delete;
+    wholeMachineAffinity& operator=(const wholeMachineAffinity&) = delete;
+
+private:
+
+    cpu_set_t original_;
+    bool saved_;
+};
+
+
+//- The master's coarse mesh: Netgen's, or Netgen's surface filled by
+//  parameters.mesher (with the fallbacks of stage 4, on every core).
+CoarseMesh meshOnMaster(const Geometry& geometry, const coarseMeshParameters& parameters)
+{
+    if (parameters.mesher == "netgen")
+    {
+        CoarseMesh coarse = geometry.coarseMesh(parameters);
+        coarse.volumeMesher = "netgen";
+        return coarse;
+    }
+
+    CoarseMesh coarse = geometry.coarseSurface(parameters);
+    std::vector<triFace> triangles(coarse.boundary.size());
+    for (std::size_t b = 0; b < triangles.size(); ++b)
+    {
+        triangles[b] = coarse.boundary[b].v;
+    }
+
+    volumeMeshParameters p;
+    p.maxCellSize = parameters.maxCellSize;
+    p.grading = parameters.grading;
+    p.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    p.what = "the coarse surface";
+
+    const wholeMachineAffinity everyCore;
+    partitionVolumeResult volume = meshVolumeWithFallbacks
+    (
+        VolumeMesher::NewAll(parameters.mesher), coarse.points, triangles, p,
+        parameters.failedSurfaceFile,
+        "Try coarseMesher netgen, or another maxCellSize, in system/pmshDict."
+    );
+    coarse.points = std::move(volume.mesh.points);
+    coarse.tets = std::move(volume.mesh.tets);
+    coarse.volumeMesher = volume.backend;
+    return coarse;
+}
+
+} // End anonymous namespace
+
 
 pmsh::CoarseMesh pmsh::generateCoarseMesh
 (
@@ -19,7 +110,7 @@ pmsh::CoarseMesh pmsh::generateCoarseMesh
     {
         comm.masterWorksOthersSleep([&]
         {
-            coarse = geometry.coarseMesh(parameters);
+            coarse = meshOnMaster(geometry, parameters);
         });
     });
     broadcastCoarseMesh(comm, coarse);
@@ -49,6 +140,38 @@ void pmsh::broadcastCoarseMesh(const Communicator& comm, CoarseMesh& coarse)
         coarse.patches.push_back({std::string(it, end)});
         it = (end == names.end()) ? end : end + 1;
     }
+}
+
+
+std::vector<double> pmsh::regularFineCells
+(
+    const CoarseMesh& coarse,
+    int refinementLevels
+)
+{
+    // A regular tet of edge L has volume L^3/(6 sqrt 2): 6 V = L^3/sqrt 2
+    const double perLevel = std::pow(8.0, refinementLevels);
+    std::vector<double> cells(coarse.tets.size());
+    for (std::size_t c = 0; c < cells.size(); ++c)
+    {
+        const tetCell& t = coarse.tets[c];
+        double edges = 0;
+        for (int i = 0; i < 4; ++i)
+        {
+            for (int j = i + 1; j < 4; ++j)
+            {
+                edges += std::sqrt(magSqr(coarse.points[t[j]] - coarse.points[t[i]]));
+            }
+        }
+        const double L = edges/6;
+        const double volume6 = tetVolume6
+        (
+            coarse.points[t[0]], coarse.points[t[1]],
+            coarse.points[t[2]], coarse.points[t[3]]
+        );
+        cells[c] = perLevel*volume6*std::sqrt(2.0)/(L*L*L);
+    }
+    return cells;
 }
 
 

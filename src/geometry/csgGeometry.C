@@ -116,9 +116,10 @@ pmsh::label pmsh::csgGeometry::nSurfaces() const
 }
 
 
-pmsh::CoarseMesh pmsh::csgGeometry::coarseMesh
+pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
 (
-    const coarseMeshParameters& parameters
+    const coarseMeshParameters& parameters,
+    bool surfaceOnly
 ) const
 {
     if (!(parameters.maxCellSize > 0))
@@ -128,13 +129,14 @@ pmsh::CoarseMesh pmsh::csgGeometry::coarseMesh
             msg()
                 << "maxCellSize " << parameters.maxCellSize << " for CSG"
                 << " geometry \"" << fileName_ << "\" must be positive",
-            "pmsh::csgGeometry::coarseMesh"
+            "pmsh::csgGeometry::netgenMesh"
         );
     }
 
     ng::meshParameters mp;
     mp.maxh = parameters.maxCellSize;
     mp.grading = parameters.grading;
+    mp.surfaceOnly = surfaceOnly;
     ng::volumeMesh m = model_->generateMesh(mp);
 
     // Patch name of each bc number: Netgen's bcname, else patch<bc>

@@ -628,12 +628,13 @@ pmsh::point pmsh::stlGeometry::projectToEdge
 }
 
 
-pmsh::CoarseMesh pmsh::stlGeometry::coarseMesh
+pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
 (
-    const coarseMeshParameters& parameters
+    const coarseMeshParameters& parameters,
+    bool surfaceOnly
 ) const
 {
-    const char* function = "pmsh::stlGeometry::coarseMesh";
+    const char* function = "pmsh::stlGeometry::netgenMesh";
     const impl& d = *impl_;
 
     if (!(parameters.maxCellSize > 0))
@@ -650,6 +651,7 @@ pmsh::CoarseMesh pmsh::stlGeometry::coarseMesh
     ng::meshParameters mp;
     mp.maxh = parameters.maxCellSize;
     mp.grading = parameters.grading;
+    mp.surfaceOnly = surfaceOnly;
     ng::volumeMesh m = ng::stlVolumeMesh
     (
         d.surface.points,

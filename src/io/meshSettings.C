@@ -333,7 +333,8 @@ std::vector<std::string> meshSettingsEntries()
     return
     {
         "geometry", "maxCellSize", "grading", "refinementLevels",
-        "volumeMesher", "optimisationSteps", "volumeMesherThreads", "patches"
+        "coarseMesher", "volumeMesher", "optimisationSteps",
+        "volumeMesherThreads", "patches"
     };
 }
 
@@ -421,6 +422,7 @@ meshSettings readMeshSettings
     {
         s.refinementLevelsLine = e->startLineNumber();
     }
+    s.coarseMesher = choice(dict, "coarseMesher", "netgen", VolumeMesher::names());
     s.volumeMesher = choice(dict, "volumeMesher", "netgen", VolumeMesher::names());
     s.optimisationSteps = bounded
     (

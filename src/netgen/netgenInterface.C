@@ -275,7 +275,9 @@ void checkBoundary(const pmsh::ng::volumeMesh& m, const std::string& what)
 }
 
 
-//- Drop points not used by any tet and renumber the rest in their order.
+//- Drop points used by no tet and no boundary triangle (points of faces
+//  between two domains, in a surface mesh) and renumber the rest in their
+//  order.
 void compactPoints(pmsh::ng::volumeMesh& m)
 {
     using namespace pmsh;
@@ -283,6 +285,13 @@ void compactPoints(pmsh::ng::volumeMesh& m)
     for (const auto& t : m.tets)
     {
         for (label p : t)
+        {
+            newIndex[p] = 0;
+        }
+    }
+    for (const auto& b : m.boundary)
+    {
+        for (label p : b.v)
         {
             newIndex[p] = 0;
         }
@@ -722,6 +731,10 @@ pmsh::ng::volumeMesh pmsh::ng::csgModel::generateMesh
     mp.maxh = parameters.maxh;
     mp.grading = parameters.grading;
     mp.optsteps3d = parameters.optimisationSteps;
+    if (parameters.surfaceOnly)
+    {
+        mp.perfstepsend = netgen::MESHCONST_OPTSURFACE;
+    }
 
     // Parts of the CSG mesher read the global mparam, not the argument
     netgen::mparam = mp;
@@ -744,7 +757,11 @@ pmsh::ng::volumeMesh pmsh::ng::csgModel::generateMesh
     }
 
     // rc is 0 even when meshing stopped early: count the elements
-    if (rc != 0 || !mesh || mesh->GetNE() == 0 || mesh->GetNSE() == 0)
+    if
+    (
+        rc != 0 || !mesh || mesh->GetNSE() == 0
+     || (!parameters.surfaceOnly && mesh->GetNE() == 0)
+    )
     {
         throw FatalError
         (
@@ -760,8 +777,11 @@ pmsh::ng::volumeMesh pmsh::ng::csgModel::generateMesh
 
     volumeMesh m = convertMesh(*mesh, what);
     compactPoints(m);
-    makeTetsPositive(m, what);
-    checkBoundary(m, what);
+    if (!parameters.surfaceOnly)
+    {
+        makeTetsPositive(m, what);
+        checkBoundary(m, what);
+    }
 
     return m;
 }
@@ -950,8 +970,11 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
             );
         }
 
-        step = "meshing the volume";
-        nglib::Ng_GenerateVolumeMesh(mesh, &mp);
+        if (!parameters.surfaceOnly)
+        {
+            step = "meshing the volume";
+            nglib::Ng_GenerateVolumeMesh(mesh, &mp);
+        }
     }
     catch (const FatalError&)
     {
@@ -970,7 +993,7 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
     }
 
     // Always NG_OK: count the tets instead
-    if (nglib::Ng_GetNE(mesh) == 0)
+    if (!parameters.surfaceOnly && nglib::Ng_GetNE(mesh) == 0)
     {
         throw FatalError
         (
@@ -1008,8 +1031,11 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
     m.bcNames[1] = "default";
 
     compactPoints(m);
-    makeTetsPositive(m, what);
-    checkBoundary(m, what);
+    if (!parameters.surfaceOnly)
+    {
+        makeTetsPositive(m, what);
+        checkBoundary(m, what);
+    }
 
     return m;
 }

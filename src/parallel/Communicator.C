@@ -157,6 +157,7 @@ void pmsh::Communicator::broadcastBytes(std::vector<char>& bytes) const
     }
     Foam::Pstream::scatter(buffer);
     bytes.assign(buffer.begin(), buffer.end());
+    traffic_.broadcastBytes += double(bytes.size());
 }
 
 
@@ -177,6 +178,11 @@ std::vector<std::vector<char>> pmsh::Communicator::exchangeBytes
     Foam::List<Foam::List<char>> sendBuffers(size_);
     for (int r = 0; r < size_; ++r)
     {
+        if (r != rank_ && !send[r].empty())
+        {
+            ++traffic_.messages;
+            traffic_.bytes += double(send[r].size());
+        }
         sendBuffers[r] = Foam::UList<char>
         (
             const_cast<char*>(send[r].data()), Foam::label(send[r].size())

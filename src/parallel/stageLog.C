@@ -35,16 +35,30 @@ void pmsh::stageLog::begin(const std::string& key, const std::string& title)
 }
 
 
-double pmsh::stageLog::time(const std::string& key) const
+const pmsh::stageLog::stageTime* pmsh::stageLog::find(const std::string& key) const
 {
     for (const stageTime& t : times_)
     {
         if (t.key == key)
         {
-            return t.max;
+            return &t;
         }
     }
-    return 0;
+    return nullptr;
+}
+
+
+double pmsh::stageLog::time(const std::string& key) const
+{
+    const stageTime* t = find(key);
+    return t ? t->max : 0;
+}
+
+
+double pmsh::stageLog::peakMemory(const std::string& key) const
+{
+    const stageTime* t = find(key);
+    return t ? t->peakMemoryBytes : 0;
 }
 
 

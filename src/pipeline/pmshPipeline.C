@@ -23,7 +23,7 @@ pmsh::volumeMeshParameters pmsh::volumeParameters
 )
 {
     volumeMeshParameters p;
-    p.what = "the surface of partition " + std::to_string(rank);
+    p.what = "partition " + std::to_string(rank);
     p.maxCellSize = settings.maxCellSize/double(1 << settings.refinementLevels);
     p.grading = settings.grading;
     p.optimisationSteps = settings.optimisationSteps;
@@ -44,6 +44,7 @@ void pmsh::setPatchTypes(CoarseMesh& coarse, const meshSettings& settings)
 void pmsh::logCoarseMesh(const CoarseMesh& coarse)
 {
     Info()
+        << "    volume filled by " << coarse.volumeMesher << '\n'
         << "    coarse cells: " << coarse.nCells()
         << ", points: " << coarse.nPoints()
         << ", boundary faces: " << coarse.boundary.size() << '\n'
@@ -91,6 +92,21 @@ void pmsh::logSurfaceSizes(const Communicator& comm, const FineSurface& surface)
 std::string pmsh::failedSurfaceFile(const std::string& caseDir, int rank)
 {
     return caseDir + "/postProcessing/pmshFoam/failedPartition" + std::to_string(rank) + ".stl";
+}
+
+
+pmsh::coarseMeshParameters pmsh::coarseParameters
+(
+    const meshSettings& settings,
+    const std::string& caseDir
+)
+{
+    coarseMeshParameters p;
+    p.maxCellSize = settings.maxCellSize;
+    p.grading = settings.grading;
+    p.mesher = settings.coarseMesher;
+    p.failedSurfaceFile = caseDir + "/postProcessing/pmshFoam/failedCoarseSurface.stl";
+    return p;
 }
 
 
@@ -197,7 +213,8 @@ void pmsh::reportSummary
     const CoarseMesh& coarse,
     const partitionVolumeResult& volume,
     globalLabel nFineCells,
-    const stageLog& stages
+    const stageLog& stages,
+    const memoryEstimate& estimate
 )
 {
     const double total = stages.total();
@@ -205,6 +222,9 @@ void pmsh::reportSummary
     const std::vector<double> cellsPerRank =
         comm.allGather(double(volume.nCells));
     const std::vector<double> attemptsPerRank = comm.allGather(double(volume.attempts));
+    const trafficCounts traffic = comm.traffic();
+    const std::vector<double> messagesPerRank = comm.allGather(traffic.messages);
+    const std::vector<double> bytesSentPerRank = comm.allGather(traffic.bytes);
     const std::vector<std::string> backends = VolumeMesher::names();
     const std::vector<double> backendPerRank = comm.allGather
     (
@@ -225,6 +245,18 @@ void pmsh::reportSummary
     double memorySum = 0;
     for (double m : memory) memorySum += m;
 
+    // What a fine cell costs a rank once the base is paid (the largest
+    // rank's peak after stage 1: libraries, MPI, the coarse mesh)
+    const double base = stages.peakMemory("coarse");
+    double bytesAboveBase = 0;
+    for (std::size_t i = 0; i < memory.size(); ++i)
+    {
+        if (cellsPerRank[i] > 0)
+        {
+            bytesAboveBase = std::max(bytesAboveBase, (memory[i] - base)/cellsPerRank[i]);
+        }
+    }
+
     Info()
         << "Summary\n"
         << "    ranks:        " << comm.size() << '\n'
@@ -244,9 +276,16 @@ void pmsh::reportSummary
         << "    peak memory per rank (MiB) min/avg/max: "
         << memoryMiB.min << " / " << memoryMiB.avg << " / " << memoryMiB.max << '\n'
         << "    bytes per fine cell (all ranks): "
-        << (nFineCells > 0 ? memorySum/nFineCells : 0) << '\n'
-        << std::defaultfloat << std::setprecision(6)
-        << "\nEnd\n\n";
+        << (nFineCells > 0 ? memorySum/nFineCells : 0)
+        << ", above the stage 1 base (largest per rank): " << bytesAboveBase << '\n'
+        << std::defaultfloat << std::setprecision(6);
+    logEstimateAccuracy
+    (
+        estimate, double(nFineCells),
+        *std::max_element(cellsPerRank.begin(), cellsPerRank.end()),
+        memoryBytes.max
+    );
+    Info() << "\nEnd\n\n";
 
     if (!comm.master())
     {
@@ -263,6 +302,7 @@ void pmsh::reportSummary
         << "  \"maxCellSize\": " << settings.maxCellSize << ",\n"
         << "  \"grading\": " << settings.grading << ",\n"
         << "  \"refinementLevels\": " << settings.refinementLevels << ",\n"
+        << "  \"coarseMesher\": " << jsonString(coarse.volumeMesher) << ",\n"
         << "  \"volumeMesher\": " << jsonString(settings.volumeMesher) << ",\n"
         << "  \"coarseCells\": " << coarse.nCells() << ",\n"
         << "  \"fineCells\": " << nFineCells << ",\n"
@@ -290,6 +330,13 @@ void pmsh::reportSummary
         << "  \"totalTime\": " << total << ",\n"
         << "  \"fineCellsPerSecondPerCore\": " << perCore << ",\n"
         << "  \"peakMemoryPerRankBytes\": " << jsonArray(memory) << ",\n"
-        << "  \"bytesPerFineCell\": " << (nFineCells > 0 ? memorySum/nFineCells : 0) << "\n"
+        << "  \"bytesPerFineCell\": " << (nFineCells > 0 ? memorySum/nFineCells : 0) << ",\n"
+        << "  \"bytesPerFineCellAboveBase\": " << bytesAboveBase << ",\n"
+        << "  \"broadcastBytes\": " << traffic.broadcastBytes << ",\n"
+        << "  \"messagesPerRank\": " << jsonArray(messagesPerRank) << ",\n"
+        << "  \"bytesSentPerRank\": " << jsonArray(bytesSentPerRank) << ",\n"
+        << "  \"estimatedFineCells\": " << estimate.fineCells << ",\n"
+        << "  \"estimatedFineCellsLargestRank\": " << estimate.fineCellsPerRank << ",\n"
+        << "  \"estimatedPeakMemoryPerRankBytes\": " << estimate.bytesPerRank << "\n"
         << "}\n";
 }

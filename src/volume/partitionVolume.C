@@ -56,14 +56,14 @@ void pmsh::writeSurfaceStl
 }
 
 
-pmsh::partitionVolumeResult pmsh::meshPartitionVolume
+pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
 (
     const std::vector<std::unique_ptr<VolumeMesher>>& meshers,
     const std::vector<point>& surfacePoints,
     const std::vector<triFace>& surfaceTriangles,
     const volumeMeshParameters& parameters,
-    int rank,
-    const std::string& failedSurfaceFile
+    const std::string& failedSurfaceFile,
+    const std::string& advice
 )
 {
     // The attempts, in order: as asked; single-threaded; without
@@ -120,14 +120,13 @@ pmsh::partitionVolumeResult pmsh::meshPartitionVolume
         }
     }
 
-    writeSurfaceStl(failedSurfaceFile, "partition" + std::to_string(rank), surfacePoints, surfaceTriangles);
+    writeSurfaceStl(failedSurfaceFile, "surface", surfacePoints, surfaceTriangles);
     throw FatalError
     (
-        msg() << "Volume meshing of partition " << rank << " failed in all "
+        msg() << "Volume meshing of " << parameters.what << " failed in all "
             << attempts.size() << " attempts:" << failures << "\n"
             << "Its surface is written to " << failedSurfaceFile << " for diagnosis.\n"
-            << "Try a smaller maxCellSize (a finer coarse mesh) or another"
-            << " volumeMesher in system/pmshDict.",
-        "meshPartitionVolume"
+            << advice,
+        "meshVolumeWithFallbacks"
     );
 }

@@ -1,4 +1,4 @@
-// Stage 4 across MPI ranks, as pmshFoam runs it (meshPartitionVolume in
+// Stage 4 across MPI ranks, as pmshFoam runs it (meshVolumeWithFallbacks in
 // failTogether): a rank whose meshers all fail stops every rank together
 // with its own error, and a mesher dying of SIGSEGV in one rank's child
 // process is a failed attempt there, replaced by the next mesher, while
@@ -18,7 +18,7 @@ using namespace pmsh::test;
 namespace
 {
 
-//- meshPartitionVolume on this rank's copy of an icosphere, in failTogether.
+//- meshVolumeWithFallbacks on this rank's copy of an icosphere, in failTogether.
 partitionVolumeResult meshTogether
 (
     const std::vector<std::unique_ptr<VolumeMesher>>& meshers,
@@ -28,13 +28,13 @@ partitionVolumeResult meshTogether
     const Communicator& comm = world();
     const closedSurface s = icosphere(1);
     volumeMeshParameters p;
-    p.what = "the surface of partition " + std::to_string(comm.rank());
+    p.what = "partition " + std::to_string(comm.rank());
     partitionVolumeResult result;
     failTogether(comm, [&]
     {
-        result = meshPartitionVolume
+        result = meshVolumeWithFallbacks
         (
-            meshers, s.points, s.triangles, p, comm.rank(), failedSurfaceFile
+            meshers, s.points, s.triangles, p, failedSurfaceFile, ""
         );
     });
     return result;
@@ -110,7 +110,7 @@ TEST(parallelVolumeMeshing, aMesherCrashingOnOneRankIsReplacedThere)
         EXPECT_HAS
         (
             r.failures,
-            "crashed on the surface of partition " + std::to_string(crashing) + " (signal 11"
+            "crashed on partition " + std::to_string(crashing) + " (signal 11"
         );
     }
     else

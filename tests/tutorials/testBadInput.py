@@ -343,7 +343,8 @@ class cases:
         pmshDict = self.path(c, "system/pmshDict")
         return c, ["Entry 'refinementLevels' in dictionary \"%s\" (line %d) is 10"
                    % (pmshDict, line_of(pmshDict, "refinementLevels")),
-                   "not fit in the memory", "of memory", "fewer refinementLevels",
+                   "cannot fit in the memory", "of memory", "fewer refinementLevels",
+                   "-noMemoryCheck",
                    "more ranks", "larger maxCellSize"]
 
     # -- case files -------------------------------------------------------

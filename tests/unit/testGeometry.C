@@ -283,6 +283,38 @@ TEST(csgGeometry, sphereCoarseMesh)
 }
 
 
+TEST(coarseMesher, hxtFillsNetgensSurfaceKeepingItBitForBit)
+{
+    const Communicator serial;
+    for (const std::string file : {"sphere.geo", "sphere.stl"})
+    {
+        auto g = Geometry::New(dataDir + file);
+        coarseMeshParameters p(0.4, 0.3);
+        const CoarseMesh surface = g->coarseSurface(p);
+        EXPECT_TRUE(surface.tets.empty()) << file;
+        ASSERT_FALSE(surface.boundary.empty()) << file;
+
+        p.mesher = "hxt";
+        const CoarseMesh m = generateCoarseMesh(serial, *g, p);
+        EXPECT_EQ(m.volumeMesher, "hxt") << file;
+        EXPECT_NEAR(checkCoarseMesh(m), 4.0/3.0*M_PI, 0.15*4.0/3.0*M_PI) << file;
+
+        // Netgen's surface, points and faces, is the boundary of the fill
+        ASSERT_GE(m.points.size(), surface.points.size()) << file;
+        EXPECT_EQ(0, std::memcmp(m.points.data(), surface.points.data(),
+                                 surface.points.size()*sizeof(point))) << file;
+        ASSERT_EQ(m.boundary.size(), surface.boundary.size()) << file;
+        for (std::size_t b = 0; b < m.boundary.size(); ++b)
+        {
+            EXPECT_EQ(m.boundary[b].v, surface.boundary[b].v) << file;
+            EXPECT_EQ(m.boundary[b].patch, surface.boundary[b].patch) << file;
+            EXPECT_EQ(m.boundary[b].surface, surface.boundary[b].surface) << file;
+        }
+        EXPECT_EQ(patchNames(m), patchNames(surface)) << file;
+    }
+}
+
+
 TEST(csgGeometry, sphereProjectionIsExactAndPure)
 {
     auto g = Geometry::New(dataDir + "sphere.geo");

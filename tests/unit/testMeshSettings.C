@@ -117,6 +117,7 @@ TEST_F(meshSettingsTest, readsEveryEntry)
         "maxCellSize       0.25;\n"
         "grading           0.5;\n"
         "refinementLevels  3;\n"
+        "coarseMesher      hxt;\n"
         "volumeMesher      netgen;\n"
         "optimisationSteps 7;\n"
         "volumeMesherThreads 2;\n"
@@ -128,6 +129,7 @@ TEST_F(meshSettingsTest, readsEveryEntry)
     EXPECT_DOUBLE_EQ(s.grading, 0.5);
     EXPECT_EQ(s.refinementLevels, 3);
     EXPECT_EQ(s.refinementLevelsLine, 4);
+    EXPECT_EQ(s.coarseMesher, "hxt");
     EXPECT_EQ(s.volumeMesher, "netgen");
     EXPECT_EQ(s.optimisationSteps, 7);
     EXPECT_EQ(s.volumeMesherThreads, 2);
@@ -279,17 +281,21 @@ TEST_F(meshSettingsTest, integerEntriesMustBeIntegersInRange)
     EXPECT_EQ(s.volumeMesherThreads, 256);
 }
 
-TEST_F(meshSettingsTest, volumeMesherMustBeAKnownBackend)
+TEST_F(meshSettingsTest, volumeAndCoarseMesherMustBeAKnownBackend)
 {
-    const std::string err = errorFor(minimal() + "volumeMesher tetgen;\n");
-    EXPECT_HAS(err, "Entry 'volumeMesher' is tetgen");
-    EXPECT_HAS(err, "Valid values are: ");
-    EXPECT_HAS(err, "at line 3.");
-    ASSERT_FALSE(VolumeMesher::names().empty());
-    for (const std::string& name : VolumeMesher::names())
+    for (const std::string entry : {"volumeMesher", "coarseMesher"})
     {
-        EXPECT_HAS(err, name);
-        EXPECT_EQ(read(minimal() + "volumeMesher " + name + ";\n").volumeMesher, name);
+        const std::string err = errorFor(minimal() + entry + " tetgen;\n");
+        EXPECT_HAS(err, "Entry '" + entry + "' is tetgen");
+        EXPECT_HAS(err, "Valid values are: ");
+        EXPECT_HAS(err, "at line 3.");
+        ASSERT_FALSE(VolumeMesher::names().empty());
+        for (const std::string& name : VolumeMesher::names())
+        {
+            EXPECT_HAS(err, name);
+            const meshSettings s = read(minimal() + entry + " " + name + ";\n");
+            EXPECT_EQ(entry == "volumeMesher" ? s.volumeMesher : s.coarseMesher, name);
+        }
     }
 }
 
@@ -302,7 +308,7 @@ TEST_F(meshSettingsTest, unknownEntryIsAnErrorWithASuggestion)
     (
         err,
         "Valid entries are: geometry, maxCellSize, grading, refinementLevels,"
-        " volumeMesher, optimisationSteps, volumeMesherThreads, patches"
+        " coarseMesher, volumeMesher, optimisationSteps, volumeMesherThreads, patches"
     );
 
     // Nothing close: no guess, still the list

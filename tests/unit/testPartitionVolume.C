@@ -25,6 +25,13 @@ std::string tempFile(const std::string& name)
     return (std::filesystem::path(::testing::TempDir()) / name).string();
 }
 
+volumeMeshParameters partitionNamed(const std::string& what)
+{
+    volumeMeshParameters p;
+    p.what = what;
+    return p;
+}
+
 } // End anonymous namespace
 
 
@@ -35,9 +42,9 @@ TEST(partitionVolume, firstAttemptSucceedsWithTheChosenBackend)
     const std::vector<triFace>& tris = sphere.triangles;
     for (const std::string& backend : VolumeMesher::names())
     {
-        const partitionVolumeResult r = meshPartitionVolume
+        const partitionVolumeResult r = meshVolumeWithFallbacks
         (
-            VolumeMesher::NewAll(backend), pts, tris, {}, 0, tempFile("unused.stl")
+            VolumeMesher::NewAll(backend), pts, tris, {}, tempFile("unused.stl"), ""
         );
         EXPECT_EQ(r.backend, backend);
         EXPECT_EQ(r.attempts, 1);
@@ -55,13 +62,14 @@ TEST(partitionVolume, failingEverywhereWritesTheSurfaceAndNamesPartitionAndFile)
 
     const std::string m = errorOf([&]
     {
-        meshPartitionVolume
+        meshVolumeWithFallbacks
         (
             meshers(std::make_unique<failingMesher>(), std::make_unique<crashingMesher>()),
-            pts, tris, {}, 3, stl
+            pts, tris, partitionNamed("partition 3"), stl, "Try another mesher."
         );
     });
     EXPECT_HAS(m, "Volume meshing of partition 3 failed in all 4 attempts");
+    EXPECT_HAS(m, "Try another mesher.");
     EXPECT_HAS(m, "attempt 3 (failing; optimisationSteps 0, grading <= 0.2): cannot mesh");
     EXPECT_HAS(m, "attempt 4 (crashing; the crashing backend)");
     EXPECT_HAS(m, "signal 11");
@@ -80,10 +88,10 @@ TEST(partitionVolume, aFailingMesherFallsBackToTheNextOne)
     const closedSurface sphere = icosphere(2);
     const std::vector<point>& pts = sphere.points;
     const std::vector<triFace>& tris = sphere.triangles;
-    const partitionVolumeResult r = meshPartitionVolume
+    const partitionVolumeResult r = meshVolumeWithFallbacks
     (
         meshers(std::make_unique<failingMesher>(), VolumeMesher::New("hxt")),
-        pts, tris, {}, 2, tempFile("z.stl")
+        pts, tris, {}, tempFile("z.stl"), ""
     );
     EXPECT_EQ(r.backend, "hxt");
     EXPECT_EQ(r.attempts, 4);   // as asked, without optimisation, graded, then hxt
@@ -98,10 +106,10 @@ TEST(partitionVolume, aCrashingMesherFallsBackToTheNextOne)
     const std::vector<triFace>& tris = sphere.triangles;
     volumeMeshParameters p;
     p.what = "the surface of partition 1";
-    const partitionVolumeResult r = meshPartitionVolume
+    const partitionVolumeResult r = meshVolumeWithFallbacks
     (
         meshers(std::make_unique<crashingMesher>(), VolumeMesher::New("netgen")),
-        pts, tris, p, 1, tempFile("c.stl")
+        pts, tris, p, tempFile("c.stl"), ""
     );
     EXPECT_EQ(r.backend, "netgen");
     EXPECT_EQ(r.attempts, 4);
@@ -119,7 +127,7 @@ TEST(partitionVolume, multithreadedHxtGivesAConformingMeshOrFallsBackToOneThread
     for (int run = 0; run < 5; ++run)
     {
         const partitionVolumeResult r =
-            meshPartitionVolume(VolumeMesher::NewAll("hxt"), pts, tris, p, 0, tempFile("t.stl"));
+            meshVolumeWithFallbacks(VolumeMesher::NewAll("hxt"), pts, tris, p, tempFile("t.stl"), "");
         EXPECT_EQ(r.backend, "hxt");
         EXPECT_LE(r.attempts, 2);
     }

@@ -24,7 +24,6 @@ namespace
 class analyticSphere : public Geometry
 {
 public:
-    CoarseMesh coarseMesh(const coarseMeshParameters&) const override { return {}; }
     point projectToSurface(const point& p, label) const override
     {
         return (1.0/std::sqrt(magSqr(p)))*p;
@@ -33,6 +32,8 @@ public:
     {
         return projectToSurface(p, s1);
     }
+protected:
+    CoarseMesh netgenMesh(const coarseMeshParameters&, bool) const override { return {}; }
 };
 
 // An octahedron around the origin split into 8 tets at the centre point 0
