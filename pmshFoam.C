@@ -271,7 +271,7 @@ int main(int argc, char *argv[])
         stages.end();
 
         stages.begin("partition", "Stage 2: partition into " + std::to_string(comm.size()) + " parts");
-        const std::vector<pmsh::label> cellPart =
+        std::vector<pmsh::label> cellPart =
             pmsh::partitionCoarseMesh(comm, coarse, decomposition);
         pmsh::logPartSizes(comm, cellPart);
         stages.end();
@@ -316,6 +316,9 @@ int main(int argc, char *argv[])
         (
             comm, coarse, cellPart, surface, pmsh::label(tets.points.size())
         );
+        const pmsh::label nCoarseCells = coarse.nCells();
+        pmsh::releaseGeometry(coarse);
+        std::vector<pmsh::label>().swap(cellPart);
         stages.end();
 
         stages.begin
@@ -376,8 +379,8 @@ int main(int argc, char *argv[])
 
         pmsh::reportSummary
         (
-            comm, runTime.globalPath(), settings, coarse, volume, nFineCells, stages,
-            estimate
+            comm, runTime.globalPath(), settings, nCoarseCells, coarse.volumeMesher,
+            volume, nFineCells, stages, estimate
         );
     }
     catch (const pmsh::collectiveFailure& e)

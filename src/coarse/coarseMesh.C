@@ -118,6 +118,15 @@ pmsh::CoarseMesh pmsh::generateCoarseMesh
 }
 
 
+void pmsh::releaseGeometry(CoarseMesh& coarse)
+{
+    // Swapped out, not cleared: clear() keeps the capacity
+    std::vector<point>().swap(coarse.points);
+    std::vector<tetCell>().swap(coarse.tets);
+    std::vector<coarseBoundaryFace>().swap(coarse.boundary);
+}
+
+
 void pmsh::broadcastCoarseMesh(const Communicator& comm, CoarseMesh& coarse)
 {
     comm.broadcast(coarse.points);

@@ -210,7 +210,8 @@ void pmsh::reportSummary
     const Communicator& comm,
     const std::string& caseDir,
     const meshSettings& settings,
-    const CoarseMesh& coarse,
+    label coarseCells,
+    const std::string& coarseMesher,
     const partitionVolumeResult& volume,
     globalLabel nFineCells,
     const stageLog& stages,
@@ -260,7 +261,7 @@ void pmsh::reportSummary
     Info()
         << "Summary\n"
         << "    ranks:        " << comm.size() << '\n'
-        << "    coarse cells: " << coarse.nCells() << '\n'
+        << "    coarse cells: " << coarseCells << '\n'
         << "    fine cells:   " << nFineCells << '\n'
         << std::fixed << std::setprecision(2);
     for (const stageLog::stageTime& t : stages.times())
@@ -302,9 +303,9 @@ void pmsh::reportSummary
         << "  \"maxCellSize\": " << settings.maxCellSize << ",\n"
         << "  \"grading\": " << settings.grading << ",\n"
         << "  \"refinementLevels\": " << settings.refinementLevels << ",\n"
-        << "  \"coarseMesher\": " << jsonString(coarse.volumeMesher) << ",\n"
+        << "  \"coarseMesher\": " << jsonString(coarseMesher) << ",\n"
         << "  \"volumeMesher\": " << jsonString(settings.volumeMesher) << ",\n"
-        << "  \"coarseCells\": " << coarse.nCells() << ",\n"
+        << "  \"coarseCells\": " << coarseCells << ",\n"
         << "  \"fineCells\": " << nFineCells << ",\n"
         << "  \"fineCellsPerRank\": " << jsonArray(cellsPerRank) << ",\n"
         << "  \"volumeMesherPerRank\": [";
