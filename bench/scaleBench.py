@@ -1,0 +1,785 @@
+#!/usr/bin/env python3
+"""pmshFoam at scale (issue #11): bench/run --coarse | --massive | --scaling
+
+  --coarse   stage 1 (coarse mesh) and stage 2 (partition) at 0.1, 0.5 and
+             1 million coarse cells, coarseMesher netgen against hxt, on the
+             three tutorial geometries; and the fine mesh's checkMesh quality
+             with either coarse mesher (the default is the faster one at
+             equal quality). Results: bench/results/coarse-stage.md.
+  --massive  one run of 50 million cells or more on 2 ranks (hxt, binary):
+             time per stage, peak memory per rank, bytes per cell, write
+             throughput, and OpenFOAM's checks of what was written.
+             Results: bench/results/massive.md.
+  --scaling  the same problem at P = 1, 2, 4, ..., 64 ranks (oversubscribed
+             beyond the cores: work per rank, balance, messages, not time),
+             per-stage serial costs, per-core rates, and a model that projects
+             the paper's Table 2 configurations. Results:
+             bench/results/scaling.md.
+
+Every mode writes its own markdown (and JSON) into --out (default
+bench/results). Nothing here is part of the tests.
+"""
+
+import argparse
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import pmshBench as pb  # noqa: E402
+
+GEOMETRIES = pb.GEOMETRIES
+TUTORIAL_SIZE = {"sphere": 0.25, "shaft": 0.45, "sphereSTL": 0.3}
+
+
+# ---------------------------------------------------------------------------
+# Reading a pmshFoam log
+# ---------------------------------------------------------------------------
+
+def stage_blocks(text):
+    """{stage number: text of that stage} of a pmshFoam log"""
+    blocks = {}
+    parts = re.split(r"^Stage (\d): ", text, flags=re.M)
+    for i in range(1, len(parts) - 1, 2):
+        blocks[int(parts[i])] = parts[i + 1].split("\nSummary")[0]
+    return blocks
+
+
+def stage_time(block):
+    """Largest rank's wall time of a stage (serial or parallel log line)"""
+    m = re.search(r"time \(s\) min/avg/max: [0-9.]+ / [0-9.]+ / ([0-9.]+)", block)
+    if not m:
+        m = re.search(r"time: ([0-9.]+) s", block)
+    return float(m.group(1)) if m else None
+
+
+def stage_peak_mib(block):
+    m = re.search(r"peak memory(?: \(MiB\) max)?: ([0-9.]+)", block)
+    return float(m.group(1)) if m else None
+
+
+def coarse_cells(text):
+    m = re.search(r"coarse cells: (\d+)", text)
+    return int(m.group(1)) if m else None
+
+
+def check_mesh(case, ranks):
+    """OpenFOAM's checkMesh on a case: (ok, max non-orthogonality, average
+    non-orthogonality, max skewness, log text)"""
+    cmd = ["checkMesh", "-case", case]
+    if ranks > 1:
+        cmd = ["mpirun", "-np", str(ranks), "--oversubscribe"] + cmd + ["-parallel"]
+    out = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    text = out.stdout
+    m = re.search(r"Mesh non-orthogonality Max: ([0-9.eE+-]+) average: ([0-9.eE+-]+)", text)
+    s = re.search(r"Max skewness = ([0-9.eE+-]+)", text)
+    return ("Mesh OK." in text,
+            float(m.group(1)) if m else None, float(m.group(2)) if m else None,
+            float(s.group(1)) if s else None, text)
+
+
+def fmt(v, digits=2):
+    return pb.fmt(v, digits)
+
+
+# ---------------------------------------------------------------------------
+# --coarse
+# ---------------------------------------------------------------------------
+
+COARSE_TARGETS = [100000, 500000, 1000000]
+
+
+def coarse_case(args, geom, mesher, h, tag):
+    name = "coarse-%s-%s-%s" % (geom["name"], mesher, tag)
+    case = pb.make_case(args.work, name, geom["tutorial"], h, 0, "hxt")
+    pb.set_entry(os.path.join(case, "system", "pmshDict"), "coarseMesher", mesher)
+    return case
+
+
+def run_coarse_stage(args, geom, mesher, h, tag, ranks=2):
+    """Stages 1 and 2 of pmshFoam (stopped when stage 3 starts)"""
+    case = coarse_case(args, geom, mesher, h, tag)
+    run = pb.Run(pb.pmsh_command(args.pmshFoam, ranks, case) + ["-noMemoryCheck"],
+                 case, "log.pmshFoam", stop_pattern=r"^Stage 3")
+    text = run.text()
+    blocks = stage_blocks(text)
+    row = {"geometry": geom["name"], "coarseMesher": mesher, "maxCellSize": h,
+           "ranks": ranks, "load": run.load_before}
+    if 2 not in blocks or stage_time(blocks.get(2, "")) is None:
+        row["error"] = pb.first_error(text) or run.tail()
+        pb.log("    FAILED %s %s h=%.4g: %s" % (geom["name"], mesher, h, row["error"]))
+        return row
+    row.update({
+        "coarseCells": coarse_cells(blocks[1]),
+        "coarseTime": stage_time(blocks[1]),
+        "partitionTime": stage_time(blocks[2]),
+        "peakMiB": stage_peak_mib(blocks[2]),
+        "filledBy": (re.search(r"volume filled by (\w+)", blocks[1]) or [None, None])[1],
+    })
+    pb.log("    %-9s coarseMesher %-6s maxCellSize %.4g: %8d coarse cells, stage 1 %.2f s"
+           " (filled by %s), partition %.2f s, peak %.0f MiB, load %.1f"
+           % (geom["name"], mesher, h, row["coarseCells"], row["coarseTime"],
+              row["filledBy"], row["partitionTime"], row["peakMiB"], run.load_before))
+    shutil.rmtree(case, ignore_errors=True)
+    return row
+
+
+def coarse_quality(args, geom, coarse_mesher, volume_mesher, levels=2, ranks=2):
+    """The fine mesh's checkMesh figures with a given coarse mesher"""
+    name = "quality-%s-%s-%s" % (geom["name"], coarse_mesher, volume_mesher)
+    case = pb.make_case(args.work, name, geom["tutorial"], TUTORIAL_SIZE[geom["name"]],
+                        levels, volume_mesher)
+    pb.set_entry(os.path.join(case, "system", "pmshDict"), "coarseMesher", coarse_mesher)
+    run = pb.Run(pb.pmsh_command(args.pmshFoam, ranks, case), case, "log.pmshFoam")
+    row = {"geometry": geom["name"], "coarseMesher": coarse_mesher,
+           "volumeMesher": volume_mesher, "r": levels, "ranks": ranks}
+    if not run.ok:
+        row["error"] = pb.first_error(run.text())
+        return row
+    with open(os.path.join(case, "postProcessing", "pmshFoam", "summary.json")) as f:
+        s = json.load(f)
+    ok, non_ortho, avg_non_ortho, skew, _ = check_mesh(case, ranks)
+    row.update({"coarseCells": s["coarseCells"], "fineCells": s["fineCells"],
+                "meshOK": ok, "maxNonOrtho": non_ortho, "avgNonOrtho": avg_non_ortho,
+                "maxSkewness": skew})
+    pb.log("    %-9s coarse %-6s volume %-6s: %d coarse, %d fine cells, checkMesh %s, "
+           "non-ortho max %.1f avg %.1f, skewness %.2f"
+           % (geom["name"], coarse_mesher, volume_mesher, s["coarseCells"], s["fineCells"],
+              "OK" if ok else "FAILED", non_ortho or -1, avg_non_ortho or -1, skew or -1))
+    shutil.rmtree(case, ignore_errors=True)
+    return row
+
+
+def mode_coarse(args):
+    res = {"machine": pb.machine_description(args), "stages": [], "quality": []}
+    for geom in GEOMETRIES:
+        for mesher in ("netgen", "hxt"):
+            # Coarse cells scale with 1/maxCellSize^3: a probe at the
+            # tutorial's size, then one run per target
+            h0 = TUTORIAL_SIZE[geom["name"]]
+            probe = run_coarse_stage(args, geom, mesher, h0, "probe")
+            if "error" in probe:
+                continue
+            for target in COARSE_TARGETS:
+                h = h0*(probe["coarseCells"]/float(target))**(1.0/3.0)
+                row = run_coarse_stage(args, geom, mesher, h, "%d" % target)
+                row["target"] = target
+                res["stages"].append(row)
+    for geom in GEOMETRIES:
+        for volume in ("netgen", "hxt"):
+            for coarse in ("netgen", "hxt"):
+                res["quality"].append(coarse_quality(args, geom, coarse, volume))
+    write_json(args, "coarse-stage.json", res)
+    write_coarse_markdown(args, res)
+
+
+def write_coarse_markdown(args, res):
+    rows = []
+    for r in res["stages"]:
+        if "error" in r:
+            rows.append([r["geometry"], r["coarseMesher"], "%.4g" % r["maxCellSize"],
+                         "failed: " + r["error"][:60], "", "", "", ""])
+            continue
+        rows.append([r["geometry"], r["coarseMesher"], "%.4g" % r["maxCellSize"],
+                     "%d" % r["coarseCells"], fmt(r["coarseTime"]),
+                     "%.0f" % (r["coarseCells"]/r["coarseTime"]) if r["coarseTime"] else "-",
+                     fmt(r["partitionTime"]), "%.0f" % r["peakMiB"]])
+    # Side by side: hxt's time over netgen's at the same target
+    ratios = []
+    for geom in GEOMETRIES:
+        for target in COARSE_TARGETS:
+            pair = {r["coarseMesher"]: r for r in res["stages"]
+                    if r["geometry"] == geom["name"] and r.get("target") == target
+                    and "error" not in r}
+            if len(pair) == 2:
+                n, x = pair["netgen"], pair["hxt"]
+                ratios.append([geom["name"], "%d" % target,
+                               fmt(n["coarseTime"]), fmt(x["coarseTime"]),
+                               fmt(x["coarseTime"]/n["coarseTime"]),
+                               fmt((x["coarseCells"]/x["coarseTime"])
+                                   / (n["coarseCells"]/n["coarseTime"]))])
+    quality = []
+    for q in res["quality"]:
+        quality.append([q["geometry"], q["volumeMesher"], q["coarseMesher"],
+                        "%d" % q.get("coarseCells", 0), "%d" % q.get("fineCells", 0),
+                        "OK" if q.get("meshOK") else "FAILED " + q.get("error", ""),
+                        fmt(q.get("maxNonOrtho"), 1), fmt(q.get("avgNonOrtho"), 1),
+                        fmt(q.get("maxSkewness"), 2)])
+    text = "\n".join([
+        "# Coarse stage: coarseMesher netgen against hxt",
+        "",
+        "Measured by `bench/run --coarse` (bench/scaleBench.py). Stage 1 is Netgen's "
+        "surface mesh of the geometry and its volume filled by the coarse mesher; "
+        "stage 2 partitions the coarse mesh into 2 parts (metis). 2 ranks; the "
+        "other rank sleeps during stage 1, the master may use every core.",
+        "",
+        machine_table(res["machine"]),
+        "",
+        "## Time per coarse mesh",
+        "",
+        pb.md_table(["geometry", "coarseMesher", "maxCellSize", "coarse cells",
+                     "stage 1 (s)", "coarse cells/s", "partition (s)", "peak MiB"], rows),
+        "",
+        "## hxt against netgen, same target size",
+        "",
+        pb.md_table(["geometry", "target coarse cells", "netgen (s)", "hxt (s)",
+                     "time hxt/netgen", "cells/s hxt/netgen"], ratios),
+        "",
+        "## Fine mesh quality by coarse mesher (r = 2, 2 ranks, checkMesh -parallel)",
+        "",
+        pb.md_table(["geometry", "volumeMesher", "coarseMesher", "coarse cells",
+                     "fine cells", "checkMesh", "max non-ortho", "avg non-ortho",
+                     "max skewness"], quality),
+        "",
+    ])
+    write_text(args, "coarse-stage.md", text)
+
+
+# ---------------------------------------------------------------------------
+# --massive
+# ---------------------------------------------------------------------------
+
+# sphere.geo at maxCellSize 0.3, r = 5 gave 19.3 million cells with hxt on 2
+# ranks (coarse mesher netgen): cells scale with 1/maxCellSize^3
+MASSIVE = {"geometry": "sphere", "levels": 5, "ranks": 2, "targetCells": 55e6,
+           "reference": (0.3, 19.3e6)}
+
+# checkMesh -parallel peaked at 3.9 GB per rank on 9.7 million cells per rank
+CHECKMESH_BYTES_PER_CELL = 420.0
+
+
+def mem_available():
+    with open("/proc/meminfo") as f:
+        for line in f:
+            if line.startswith("MemAvailable:"):
+                return int(line.split()[1])*1024
+    return 0
+
+
+def read_labels(path):
+    """An OpenFOAM labelList (binary or ascii) as a numpy int64 array"""
+    import numpy as np
+    with open(path, "rb") as f:
+        data = f.read()
+    binary = re.search(rb"format\s+binary", data[:2000]) is not None
+    header_end = data.find(b"}", data.find(b"FoamFile")) + 1
+    body = data[header_end:]
+    m = re.search(rb"(\d+)\s*\(", body)
+    n = int(m.group(1))
+    start = m.end()
+    if binary:
+        return np.frombuffer(body, dtype=np.int32, count=n, offset=start).astype(np.int64)
+    return np.array(body[start:body.rfind(b")")].split(), dtype=np.int64)
+
+
+def check_addressing(case, ranks):
+    """The checks of the tests' procAddressing test, on the massive output:
+    global points, faces and cells contiguous and each internal face once"""
+    import numpy as np
+    procs = [os.path.join(case, "processor%d" % p, "constant", "polyMesh")
+             for p in range(ranks)]
+    point_ids = [np.unique(read_labels(os.path.join(d, "pointProcAddressing")))
+                 for d in procs]
+    points = np.unique(np.concatenate(point_ids))
+    faces = [read_labels(os.path.join(d, "faceProcAddressing")) for d in procs]
+    cells = [read_labels(os.path.join(d, "cellProcAddressing")) for d in procs]
+    all_cells = np.concatenate(cells)
+    owned = np.concatenate([f[f > 0] - 1 for f in faces])
+    flipped = np.concatenate([-f[f < 0] - 1 for f in faces])
+    result = {
+        "points": int(points.size),
+        "pointsContiguous": bool(points[0] == 0 and points[-1] == points.size - 1),
+        "cells": int(all_cells.size),
+        "cellsContiguous": bool(np.array_equal(np.sort(all_cells),
+                                               np.arange(all_cells.size))),
+        "faces": int(np.unique(owned).size),
+        "facesOwnedOnce": bool(np.unique(owned).size == owned.size),
+        "facesContiguous": bool(np.array_equal(np.unique(owned),
+                                               np.arange(np.unique(owned).size))),
+        "processorFacesPaired": bool(np.isin(flipped, owned).all()),
+    }
+    result["ok"] = all(v for k, v in result.items() if isinstance(v, bool))
+    return result
+
+
+def directory_bytes(path):
+    total = 0
+    for root, _, files in os.walk(path):
+        for name in files:
+            total += os.path.getsize(os.path.join(root, name))
+    return total
+
+
+def mode_massive(args):
+    m = MASSIVE
+    geom = [g for g in GEOMETRIES if g["name"] == m["geometry"]][0]
+    h_ref, cells_ref = m["reference"]
+    h = round(h_ref*(cells_ref/m["targetCells"])**(1.0/3.0), 4)
+    case = pb.make_case(args.work, "massive", geom["tutorial"], h, m["levels"], "hxt")
+    pb.log("Massive: %s, maxCellSize %g, r = %d, hxt, %d ranks, binary (target %.0f M cells)"
+           % (geom["name"], h, m["levels"], m["ranks"], m["targetCells"]/1e6))
+    run = pb.Run(pb.pmsh_command(args.pmshFoam, m["ranks"], case), case, "log.pmshFoam")
+    res = {"machine": pb.machine_description(args), "maxCellSize": h,
+           "refinementLevels": m["levels"], "ranks": m["ranks"], "wallTime": run.wall,
+           "peakRssTreeBytes": run.max_rss, "ok": run.ok}
+    if not run.ok:
+        res["error"] = pb.first_error(run.text()) or run.tail()
+        pb.log("FAILED: %s" % res["error"])
+        write_json(args, "massive.json", res)
+        return
+    with open(os.path.join(case, "postProcessing", "pmshFoam", "summary.json")) as f:
+        s = json.load(f)
+    res["summary"] = s
+    written = sum(directory_bytes(os.path.join(case, "processor%d" % p))
+                  for p in range(m["ranks"]))
+    res["writtenBytes"] = written
+    res["writeMiBPerSecond"] = written/1048576.0/s["writeTime"]
+    pb.log("  %d fine cells in %.0f s; peak %.2f GiB per rank; %.0f B per cell above base;"
+           " wrote %.2f GiB at %.0f MiB/s"
+           % (s["fineCells"], s["totalTime"], max(s["peakMemoryPerRankBytes"])/2**30,
+              s["bytesPerFineCellAboveBase"], written/2**30, res["writeMiBPerSecond"]))
+
+    # OpenFOAM's own check: checkMesh -parallel when both ranks' meshes fit
+    # in memory together, else checkMesh on each processor directory in
+    # turn (a serial run reads processor patches as plain patches)
+    per_rank = max(s["fineCellsPerRank"])*CHECKMESH_BYTES_PER_CELL
+    checks = []
+    if m["ranks"]*per_rank < 0.9*mem_available():
+        ok, non_ortho, avg, skew, text = check_mesh(case, m["ranks"])
+        checks.append({"how": "checkMesh -parallel", "ok": ok, "maxNonOrtho": non_ortho,
+                       "avgNonOrtho": avg, "maxSkewness": skew})
+    else:
+        for p in range(m["ranks"]):
+            ok, non_ortho, avg, skew, text = check_mesh(
+                os.path.join(case, "processor%d" % p), 1)
+            checks.append({"how": "checkMesh -case processor%d (serial)" % p, "ok": ok,
+                           "maxNonOrtho": non_ortho, "avgNonOrtho": avg,
+                           "maxSkewness": skew})
+    for c in checks:
+        pb.log("  %s: %s" % (c["how"], "Mesh OK" if c["ok"] else "FAILED"))
+    res["checkMesh"] = checks
+    res["addressing"] = check_addressing(case, m["ranks"])
+    pb.log("  procAddressing: %s" % ("OK" if res["addressing"]["ok"] else res["addressing"]))
+    write_json(args, "massive.json", res)
+    write_massive_markdown(args, res)
+    if not args.keep:
+        shutil.rmtree(case, ignore_errors=True)
+
+
+def write_massive_markdown(args, res):
+    s = res["summary"]
+    stages = [[k, fmt(v["seconds"]), "%.2f" % (v["peakMemoryBytes"]/2**30)]
+              for k, v in s["stages"].items()]
+    per_rank = [["%d" % p, "%d" % c, "%.2f" % (b/2**30), "%.0f" % (b/c)]
+                for p, (c, b) in enumerate(zip(s["fineCellsPerRank"],
+                                               s["peakMemoryPerRankBytes"]))]
+    checks = [[c["how"], "Mesh OK" if c["ok"] else "FAILED", fmt(c["maxNonOrtho"], 1),
+               fmt(c["avgNonOrtho"], 1), fmt(c["maxSkewness"], 2)] for c in res["checkMesh"]]
+    a = res["addressing"]
+    text = "\n".join([
+        "# Massive run: %.1f million cells on one machine, 2 ranks" % (s["fineCells"]/1e6),
+        "",
+        "Measured by `bench/run --massive` (bench/scaleBench.py): sphere.geo, "
+        "maxCellSize %g, r = %d, volumeMesher hxt, coarseMesher %s, binary, %d ranks."
+        % (res["maxCellSize"], res["refinementLevels"], s.get("coarseMesher", "netgen"),
+           res["ranks"]),
+        "",
+        machine_table(res["machine"]),
+        "",
+        "| figure | value |",
+        "|---|---:|",
+        "| coarse cells | %d |" % s["coarseCells"],
+        "| fine cells | %d |" % s["fineCells"],
+        "| expected after stage 1 | %.0f (measured/expected %.2f) |"
+        % (s["estimatedFineCells"], s["fineCells"]/s["estimatedFineCells"]),
+        "| wall time, whole command (s) | %.0f |" % res["wallTime"],
+        "| total of the stages (s) | %.0f |" % s["totalTime"],
+        "| fine cells/s per core (stages 2-5) | %.0f |" % s["fineCellsPerSecondPerCore"],
+        "| peak memory, largest rank (GiB) | %.2f (expected %.2f) |"
+        % (max(s["peakMemoryPerRankBytes"])/2**30, s["estimatedPeakMemoryPerRankBytes"]/2**30),
+        "| bytes per fine cell, all ranks | %.0f |" % s["bytesPerFineCell"],
+        "| bytes per fine cell above the stage-1 base, largest | %.0f |"
+        % s["bytesPerFineCellAboveBase"],
+        "| written (GiB) | %.2f |" % (res["writtenBytes"]/2**30),
+        "| write throughput (MiB/s) | %.0f |" % res["writeMiBPerSecond"],
+        "",
+        "## Stages",
+        "",
+        pb.md_table(["stage", "seconds (largest rank)", "peak GiB so far"], stages),
+        "",
+        "## Ranks",
+        "",
+        pb.md_table(["rank", "fine cells", "peak GiB", "bytes per cell"], per_rank),
+        "",
+        "## Accepted by OpenFOAM",
+        "",
+        pb.md_table(["check", "result", "max non-ortho", "avg non-ortho", "max skewness"],
+                    checks),
+        "",
+        "procAddressing (the tests' checks, with numpy): %d global points %s, %d cells %s, "
+        "%d faces %s, each owned once: %s, every processor face paired: %s."
+        % (a["points"], "contiguous" if a["pointsContiguous"] else "NOT contiguous",
+           a["cells"], "contiguous" if a["cellsContiguous"] else "NOT contiguous",
+           a["faces"], "contiguous" if a["facesContiguous"] else "NOT contiguous",
+           a["facesOwnedOnce"], a["processorFacesPaired"]),
+        "",
+    ])
+    write_text(args, "massive.md", text)
+
+
+# ---------------------------------------------------------------------------
+# --scaling
+# ---------------------------------------------------------------------------
+
+# The same problem on P = 1..64 ranks: sphere.geo with some 8000 coarse
+# cells (about 120 per rank at P = 64), r = 2
+SCALING = {"geometry": "sphere", "maxCellSize": 0.12, "levels": 2,
+           "ranks": [1, 2, 4, 8, 16, 32, 64]}
+# Per-core rates: the same coarse mesh refined once more, on 1 and 2 ranks
+RATE_LEVELS = 3
+
+# Assumed for the paper's machine (NTNU Vilje, SGI ICE X, FDR InfiniBand)
+NETWORK = {"latency": 2e-6, "bandwidth": 5e9}
+# The paper's serial Netgen rate on one Vilje core (section 5)
+PAPER_NETGEN_RATE = 0.23e6/60.0
+
+
+def run_scaling_case(args, ranks, levels, volume, coarse_mesher):
+    geom = [g for g in GEOMETRIES if g["name"] == SCALING["geometry"]][0]
+    name = "scaling-%s-%s-r%d-np%d" % (volume, coarse_mesher, levels, ranks)
+    case = pb.make_case(args.work, name, geom["tutorial"], SCALING["maxCellSize"],
+                        levels, volume)
+    pb.set_entry(os.path.join(case, "system", "pmshDict"), "coarseMesher", coarse_mesher)
+    run = pb.Run(pb.pmsh_command(args.pmshFoam, ranks, case), case, "log.pmshFoam")
+    row = {"ranks": ranks, "r": levels, "volumeMesher": volume,
+           "coarseMesher": coarse_mesher, "wallTime": run.wall, "load": run.load_before}
+    summary = os.path.join(case, "postProcessing", "pmshFoam", "summary.json")
+    if not run.ok or not os.path.exists(summary):
+        row["error"] = pb.first_error(run.text()) or run.tail()
+        pb.log("    FAILED P=%d: %s" % (ranks, row["error"]))
+        return row
+    with open(summary) as f:
+        s = json.load(f)
+    cells = s["fineCellsPerRank"]
+    mean = s["fineCells"]/float(ranks)
+    # Processor faces per rank, from the boundary files written
+    proc_faces, neighbours = [], []
+    for p in range(ranks if ranks > 1 else 0):
+        with open(os.path.join(case, "processor%d" % p, "constant", "polyMesh",
+                               "boundary")) as f:
+            text = f.read()
+        found = re.findall(r"procBoundary\d+to\d+\s*\{[^}]*?nFaces\s+(\d+)", text)
+        proc_faces.append(sum(int(n) for n in found))
+        neighbours.append(len(found))
+    row.update({
+        "coarseCells": s["coarseCells"], "fineCells": s["fineCells"],
+        "fineCellsPerRank": cells, "balance": max(cells)/mean,
+        "stages": {k: v["seconds"] for k, v in s["stages"].items()},
+        "stageSecondsPerRank": {k: v["secondsPerRank"] for k, v in s["stages"].items()},
+        "fineCellsPerSecondPerCore": s["fineCellsPerSecondPerCore"],
+        "peakMemoryPerRankBytes": s["peakMemoryPerRankBytes"],
+        "broadcastBytes": s.get("broadcastBytes", 0),
+        "messagesPerRank": s.get("messagesPerRank", []),
+        "bytesSentPerRank": s.get("bytesSentPerRank", []),
+        "processorFacesPerRank": proc_faces, "neighboursPerRank": neighbours,
+        "totalTime": s["totalTime"], "coarseTime": s["coarseTime"],
+        "fineTime": s["fineTime"], "writeTime": s["writeTime"],
+    })
+    pb.log("    P=%-3d %-6s r=%d: %8d cells, max/mean %.3f, fine %.2f s, messages/rank max %d,"
+           " bytes/rank max %.0f, load %.1f"
+           % (ranks, volume, levels, s["fineCells"], row["balance"], s["fineTime"],
+              max(row["messagesPerRank"] or [0]), max(row["bytesSentPerRank"] or [0]),
+              run.load_before))
+    shutil.rmtree(case, ignore_errors=True)
+    return row
+
+
+def fit_power(xs, ys):
+    """y = a x^b through the points (least squares in log space)"""
+    lx = [math.log(x) for x in xs]
+    ly = [math.log(y) for y in ys]
+    n = float(len(xs))
+    mx, my = sum(lx)/n, sum(ly)/n
+    sxx = sum((x - mx)**2 for x in lx)
+    b = sum((x - mx)*(y - my) for x, y in zip(lx, ly))/sxx if sxx > 0 else 1.0
+    return math.exp(my - b*mx), b
+
+
+class Model:
+    """pmshFoam's wall time (stages 1-5, I/O excluded as in the paper) on P
+    cores of a cluster, from per-stage costs measured here:
+
+      coarse(Nc)           = a Nc^b       (Netgen surface + fill, master alone)
+      broadcast(Nc, P)     = ceil(log2 P) (latency + bytesPerCoarseCell Nc / bandwidth)
+      partition(Nc, P)     = c Nc (1 + d log2 P)   (metis on the master)
+      fine(F, P)           = balance F / P / rate  (stages 3-4, one core per rank)
+      numbering(F, P)      = the per-rank time measured here at the same fine
+                             cells per rank, plus the messages' latency and
+                             bandwidth on the cluster's network
+    """
+
+    def __init__(self, coarse_fit, partition_fit, bytes_per_coarse_cell, rate, balance,
+                 numbering_per_cell, messages_per_rank, bytes_per_fine_cell_sent, speed):
+        self.coarse_fit = coarse_fit
+        self.partition_fit = partition_fit
+        self.bytes_per_coarse_cell = bytes_per_coarse_cell
+        self.rate = rate
+        self.balance = balance
+        self.numbering_per_cell = numbering_per_cell
+        self.messages_per_rank = messages_per_rank
+        self.bytes_per_fine_cell_sent = bytes_per_fine_cell_sent
+        self.speed = speed      # the cluster's core over this machine's
+
+    def stages(self, coarse_cells, fine_cells, P, network=NETWORK, speed=None):
+        speed = self.speed if speed is None else speed
+        a, b = self.coarse_fit
+        c, d = self.partition_fit
+        steps = math.ceil(math.log2(P)) if P > 1 else 0
+        per_rank = self.balance(P)*fine_cells/P
+        return {
+            "coarse": a*coarse_cells**b/speed,
+            "broadcast": steps*(network["latency"] + self.bytes_per_coarse_cell*coarse_cells
+                                / network["bandwidth"]),
+            "partition": c*coarse_cells*(1 + d*math.log2(P))/speed if P > 1 else 0.0,
+            "fine": per_rank/self.rate/speed,
+            "numbering": (per_rank*self.numbering_per_cell/speed
+                          + (self.messages_per_rank(P)*network["latency"]
+                             + per_rank*self.bytes_per_fine_cell_sent/network["bandwidth"])
+                          if P > 1 else per_rank*self.numbering_per_cell/speed),
+        }
+
+    def total(self, coarse_cells, fine_cells, P, **kw):
+        return sum(self.stages(coarse_cells, fine_cells, P, **kw).values())
+
+
+def load_coarse_fits(args):
+    """Stage 1 and 2 costs from coarse-stage.json (bench/run --coarse)"""
+    path = os.path.join(args.out, "coarse-stage.json")
+    with open(path) as f:
+        data = json.load(f)
+    fits = {}
+    for mesher in ("netgen", "hxt"):
+        rows = [r for r in data["stages"] if r["coarseMesher"] == mesher and "error" not in r]
+        fits[mesher] = {
+            "coarse": fit_power([r["coarseCells"] for r in rows],
+                                [r["coarseTime"] for r in rows]),
+            "partitionPerCell": sum(r["partitionTime"]/r["coarseCells"] for r in rows)/len(rows),
+            "rate": sum(r["coarseCells"]/r["coarseTime"] for r in rows
+                        if r["geometry"] == "sphere")/max(1, len([r for r in rows
+                                                                 if r["geometry"] == "sphere"])),
+        }
+    return fits
+
+
+def mode_scaling(args):
+    res = {"machine": pb.machine_description(args), "network": NETWORK,
+           "problem": SCALING, "runs": [], "rates": []}
+    pb.log("Same problem, P = %s (hxt)" % SCALING["ranks"])
+    for P in SCALING["ranks"]:
+        res["runs"].append(run_scaling_case(args, P, SCALING["levels"], "hxt", args.coarseMesher))
+    pb.log("Per-core rates, r = %d, P = 1, 2" % RATE_LEVELS)
+    for volume in ("hxt", "netgen"):
+        for P in (1, 2):
+            levels = RATE_LEVELS if volume == "hxt" else SCALING["levels"]
+            mesher = "hxt" if volume == "hxt" else "netgen"
+            res["rates"].append(run_scaling_case(args, P, levels, volume, mesher))
+    write_json(args, "scaling.json", res)
+    write_scaling_markdown(args, res)
+
+
+def build_models(args, res):
+    fits = load_coarse_fits(args)
+    runs = [r for r in res["runs"] if "error" not in r]
+    by_p = {r["ranks"]: r for r in runs}
+    # Balance: measured max/mean at each P, the last one for larger P
+    def balance(P):
+        known = sorted(p for p in by_p if p <= P)
+        return by_p[known[-1]]["balance"] if known else 1.0
+    # Partition time grows with log2 P: fit d from the measured runs
+    part = [(r["ranks"], r["stages"]["partition"]) for r in runs if r["ranks"] > 1]
+    coarse_cells = runs[0]["coarseCells"]
+    t2 = by_p[2]["stages"]["partition"] if 2 in by_p else part[0][1]
+    t64 = part[-1][1]
+    d = max(0.0, (t64/t2 - 1)/(math.log2(part[-1][0]) - 1) - 0) if t2 > 0 else 0.0
+    bytes_per_coarse = by_p[2]["broadcastBytes"]/coarse_cells if 2 in by_p else 60.0
+    def messages(P):
+        known = sorted(p for p in by_p if 1 < p <= P)
+        return max(by_p[known[-1]]["messagesPerRank"]) if known else 0
+    sent = [max(r["bytesSentPerRank"])/(max(r["fineCellsPerRank"])) for r in runs
+            if r["ranks"] > 1]
+    bytes_sent = max(sent) if sent else 0.0
+    models = {}
+    for mesher in ("netgen", "hxt"):
+        rate_runs = [r for r in res["rates"] if r["volumeMesher"] == mesher and "error" not in r
+                     and r["ranks"] == 1]
+        if not rate_runs:
+            continue
+        r1 = rate_runs[0]
+        fine_rate = r1["fineCells"]/(r1["stages"]["surface"] + r1["stages"]["volume"])
+        # Numbering's own work per fine cell of the largest rank, where there
+        # are interfaces to number (P = 2)
+        r2 = [r for r in res["rates"] if r["volumeMesher"] == mesher and "error" not in r
+              and r["ranks"] == 2] or [r1]
+        numbering_per_cell = r2[0]["stages"]["numbering"]/max(r2[0]["fineCellsPerRank"])
+        a, b = fits[mesher]["coarse"]
+        c = fits[mesher]["partitionPerCell"]
+        models[mesher] = Model((a, b), (c/(1 + d), d), bytes_per_coarse, fine_rate, balance,
+                               numbering_per_cell, messages, bytes_sent, 1.0)
+    # The cluster's core speed relative to this machine's: the paper's
+    # Netgen coarse rate against Netgen's here
+    speed = PAPER_NETGEN_RATE/fits["netgen"]["rate"]
+    return models, speed, fits, d, bytes_per_coarse, bytes_sent
+
+
+def write_scaling_markdown(args, res):
+    models, speed, fits, d, bytes_per_coarse, bytes_sent = build_models(args, res)
+    runs = [r for r in res["runs"] if "error" not in r]
+    rows = []
+    for r in runs:
+        rows.append(["%d" % r["ranks"], "%d" % r["fineCells"],
+                     "%d" % max(r["fineCellsPerRank"]), "%.3f" % r["balance"],
+                     fmt(r["stages"]["partition"], 3),
+                     "%d" % max(r["processorFacesPerRank"] or [0]),
+                     "%d" % max(r["neighboursPerRank"] or [0]),
+                     "%d" % max(r["messagesPerRank"] or [0]),
+                     "%.0f" % (max(r["bytesSentPerRank"] or [0])/1024.0),
+                     "%.0f" % (r["broadcastBytes"]/1024.0),
+                     "%.0f" % (max(r["peakMemoryPerRankBytes"])/2**20)])
+    # Model error on the runs with one core per rank
+    checks = []
+    for r in [x for x in res["rates"] + runs if "error" not in x and x["ranks"] <= 2]:
+        mesher = r["volumeMesher"]
+        if mesher not in models:
+            continue
+        m = models[mesher]
+        predicted = m.total(r["coarseCells"], r["fineCells"], r["ranks"],
+                            network={"latency": 0, "bandwidth": float("inf")}, speed=1.0)
+        measured = r["coarseTime"] + r["fineTime"]
+        checks.append(["%s/%s" % (r["coarseMesher"], mesher), "%d" % r["r"],
+                       "%d" % r["ranks"], "%d" % r["fineCells"], fmt(measured),
+                       fmt(predicted), "%+.0f%%" % (100*(predicted/measured - 1))])
+    # The paper's Table 2, projected
+    projection = []
+    for row in pb.read_paper_table():
+        if row["geometry"] not in ("sphere.geo", "shaft.geo", "sphere.stl"):
+            continue
+        Nc, F, P = row["coarseMcells"]*1e6, row["fineMcells"]*1e6, int(row["cores"])
+        cells = ["%s" % row["geometry"], "%d" % P, "%d" % row["r"],
+                 "%.1f" % row["coarseMcells"], "%.0f" % row["fineMcells"],
+                 fmt(row["coarseTime"], 0), fmt(row["totalTime"], 0)]
+        for mesher in ("netgen", "hxt"):
+            if mesher in models:
+                st = models[mesher].stages(Nc, F, P, speed=speed)
+                cells += [fmt(st["coarse"], 0), fmt(sum(st.values()), 0),
+                          fmt(row["totalTime"]/sum(st.values()), 1)]
+        projection.append(cells)
+    text = "\n".join([
+        "# Scaling: P = 1 to 64 measured, the paper's Table 2 projected",
+        "",
+        "Measured by `bench/run --scaling` (bench/scaleBench.py) on this 2-core machine; "
+        "beyond 2 ranks the ranks share the cores, so those runs give work per rank, "
+        "balance and messages, not time.",
+        "",
+        machine_table(res["machine"]),
+        "",
+        "## The same problem on P ranks",
+        "",
+        "sphere.geo, maxCellSize %g, r = %d, volumeMesher hxt, coarseMesher %s."
+        % (SCALING["maxCellSize"], SCALING["levels"], args.coarseMesher),
+        "",
+        pb.md_table(["P", "fine cells", "largest rank", "max/mean", "partition (s)",
+                     "processor faces (max)", "neighbours (max)", "messages (max)",
+                     "KiB sent (max)", "broadcast KiB", "peak MiB"], rows),
+        "",
+        "## The model",
+        "",
+        "```",
+        Model.__doc__.strip(),
+        "```",
+        "",
+        "Fitted here: coarse stage (netgen) %.3g Nc^%.2f s, (hxt) %.3g Nc^%.2f s; "
+        "partition %.3g s per coarse cell (2 parts), growing by %.2f per doubling of P; "
+        "broadcast %.0f bytes per coarse cell; %.1f bytes sent per fine cell of the largest "
+        "rank in numbering and addressing."
+        % (fits["netgen"]["coarse"][0], fits["netgen"]["coarse"][1],
+           fits["hxt"]["coarse"][0], fits["hxt"]["coarse"][1],
+           fits["hxt"]["partitionPerCell"], d, bytes_per_coarse, bytes_sent),
+        "",
+        "Assumed for the paper's cluster: network latency %.0f us and bandwidth %.0f GB/s "
+        "per link (FDR InfiniBand), a tree broadcast, one rank per core; the core's speed "
+        "relative to this machine's from Netgen's coarse meshing rate, the paper's %.0f "
+        "cells/s against %.0f here: factor %.2f; the paper's fine cell counts; fine cells "
+        "per rank balanced as measured here at the largest P (%.3f)."
+        % (NETWORK["latency"]*1e6, NETWORK["bandwidth"]/1e9, PAPER_NETGEN_RATE,
+           fits["netgen"]["rate"], speed, runs[-1]["balance"]),
+        "",
+        "### Its error on the runs measured here (one core per rank)",
+        "",
+        pb.md_table(["coarse/volume mesher", "r", "P", "fine cells", "measured (s)",
+                     "model (s)", "error"], checks),
+        "",
+        "## The paper's Table 2 and pmshFoam projected",
+        "",
+        pb.md_table(["geometry", "cores", "r", "coarse M", "fine M", "paper coarse (s)",
+                     "paper total (s)", "netgen: coarse (s)", "netgen: total (s)",
+                     "paper/netgen", "hxt: coarse (s)", "hxt: total (s)", "paper/hxt"],
+                    projection),
+        "",
+    ])
+    write_text(args, "scaling.md", text)
+
+
+# ---------------------------------------------------------------------------
+# Shared output
+# ---------------------------------------------------------------------------
+
+def machine_table(machine):
+    return pb.md_table(["machine", ""], [[k, str(v)] for k, v in machine.items()])
+
+
+def write_json(args, name, data):
+    os.makedirs(args.out, exist_ok=True)
+    with open(os.path.join(args.out, name), "w") as f:
+        json.dump(data, f, indent=1)
+
+
+def write_text(args, name, text):
+    os.makedirs(args.out, exist_ok=True)
+    path = os.path.join(args.out, name)
+    with open(path, "w") as f:
+        f.write(text)
+    pb.log("Written: %s" % path)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    group = parser.add_mutually_exclusive_group(required=True)
+    for mode in ("coarse", "massive", "scaling"):
+        group.add_argument("--" + mode, dest="mode", action="store_const", const=mode)
+    parser.add_argument("--out", default=os.path.join(pb.BENCH_DIR, "results"))
+    parser.add_argument("--work", help="scratch directory (default: a new temporary one)")
+    parser.add_argument("--pmshFoam", default=shutil.which("pmshFoam") or "pmshFoam")
+    parser.add_argument("--note", default="")
+    parser.add_argument("--keep", action="store_true", help="keep the scratch cases")
+    parser.add_argument("--coarseMesher", default="hxt",
+                        help="coarse mesher of the --scaling runs (default hxt)")
+    parser.add_argument("--rewrite", action="store_true",
+                        help="--scaling: only rewrite the report from scaling.json")
+    args = parser.parse_args()
+    args.work = args.work or tempfile.mkdtemp(prefix="pmshFoam-%s-" % args.mode)
+    os.makedirs(args.work, exist_ok=True)
+    if args.rewrite and args.mode == "scaling":
+        with open(os.path.join(args.out, "scaling.json")) as f:
+            write_scaling_markdown(args, json.load(f))
+        return
+    {"coarse": mode_coarse, "massive": mode_massive, "scaling": mode_scaling}[args.mode](args)
+
+
+if __name__ == "__main__":
+    main()
