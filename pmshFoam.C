@@ -252,7 +252,11 @@ int main(int argc, char *argv[])
 
         stages.begin("partition", "Stage 2: partition into " + std::to_string(comm.size()) + " parts");
         const std::vector<pmsh::label> cellPart =
-            pmsh::partitionCoarseMesh(comm, coarse, decomposition);
+            pmsh::partitionCoarseMesh
+            (
+                comm, coarse, decomposition,
+                settings.maxCellSize, settings.refinementLevels
+            );
         pmsh::logPartSizes(comm, cellPart);
         stages.end();
 
