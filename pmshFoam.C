@@ -59,6 +59,7 @@ Usage
 #include "Communicator.H"
 #include "failTogether.H"
 #include "fieldTemplates.H"
+#include "fineCellWeights.H"
 #include "foamMeshOutput.H"
 #include "Geometry.H"
 #include "globalNumbering.H"
@@ -76,6 +77,7 @@ Usage
 #include <mpi.h>
 #include <malloc.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -253,16 +255,27 @@ int main(int argc, char *argv[])
         );
         pmsh::setPatchTypes(coarse, settings);
         pmsh::logCoarseMesh(coarse);
+        // Expected fine cells of every coarse cell (the master's): the
+        // partition balances them, the memory estimate sums them
+        std::vector<double> fineWeights;
         pmsh::memoryEstimate estimate;
         pmsh::failTogether(comm, [&]
         {
+            if (comm.master())
+            {
+                fineWeights = pmsh::fineCellWeights
+                (
+                    coarse, settings.maxCellSize, settings.refinementLevels
+                );
+            }
+            const double weightSum =
+                comm.sum(std::accumulate(fineWeights.begin(), fineWeights.end(), 0.0));
+
             // Stop before the expensive stages if the fine mesh cannot fit
-            const std::vector<double> expected =
-                pmsh::regularFineCells(coarse, settings.refinementLevels);
             estimate = pmsh::estimateAndCheckMemory
             (
                 comm, settings, coarse.nCells(),
-                std::accumulate(expected.begin(), expected.end(), 0.0),
+                weightSum*std::pow(8.0, settings.refinementLevels),
                 !args.found("noMemoryCheck")
             );
             // The patches are known now: every field must cover them all
@@ -272,7 +285,8 @@ int main(int argc, char *argv[])
 
         stages.begin("partition", "Stage 2: partition into " + std::to_string(comm.size()) + " parts");
         std::vector<pmsh::label> cellPart =
-            pmsh::partitionCoarseMesh(comm, coarse, decomposition);
+            pmsh::partitionCoarseMesh(comm, coarse, decomposition, fineWeights);
+        std::vector<double>().swap(fineWeights);
         pmsh::logPartSizes(comm, cellPart);
         stages.end();
 

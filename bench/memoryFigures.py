@@ -4,8 +4,9 @@
 For each tutorial geometry and a set of (volumeMesher, coarseMesher, r, ranks),
 mesh a copy of the tutorial and read from its log and summary.json:
 
-- fine cells / regularFineCells (the coarse mesh's sum, from the log's
-  "expected fine cells" divided by the estimate's own factor);
+- fine cells / weightedFineCells (8^r times the sum of the coarse mesh's
+  fineCellWeights: summary.json's "estimatedFineCells" divided by the
+  estimate's own factor);
 - the largest rank's peak memory above the stage-1 base, per fine cell of
   that rank ("bytesPerFineCellAboveBase");
 - the estimate's error (measured / expected) for cells and peak memory.
@@ -41,12 +42,13 @@ QUICK_RUNS = [("netgen", "netgen", 2, 1), ("hxt", "netgen", 3, 2), ("hxt", "hxt"
 SIZES = {"sphere": 0.3, "shaft": 0.45, "sphereSTL": 0.3}
 
 
-def estimate_factor(volume_mesher):
-    """The estimate's cellsPerRegular for a mesher, from memoryEstimate.C"""
+def estimate_factor(volume_mesher, coarse_mesher):
+    """The estimate's cellsPerWeighted for a pair of meshers, from
+    memoryEstimate.C"""
     path = os.path.join(pb.ROOT, "src", "pipeline", "memoryEstimate.C")
     with open(path) as f:
         text = f.read()
-    m = re.search(r'\{"%s",\s*([0-9.eE+-]+)' % volume_mesher, text)
+    m = re.search(r'\{"%s",\s*"%s",\s*([0-9.eE+-]+)' % (volume_mesher, coarse_mesher), text)
     return float(m.group(1))
 
 
@@ -62,12 +64,12 @@ def run_one(args, geom, volume, coarse, levels, ranks):
         return None
     with open(summary) as f:
         s = json.load(f)
-    regular = s["estimatedFineCells"]/estimate_factor(volume)
+    weighted = s["estimatedFineCells"]/estimate_factor(volume, coarse)
     cells = s["fineCellsPerRank"]
     row = {
         "geometry": geom["name"], "volumeMesher": volume, "coarseMesher": coarse,
         "r": levels, "ranks": ranks, "coarseCells": s["coarseCells"],
-        "fineCells": s["fineCells"], "cellsPerRegular": s["fineCells"]/regular,
+        "fineCells": s["fineCells"], "cellsPerWeighted": s["fineCells"]/weighted,
         "largestRankShare": max(cells)/(s["fineCells"]/float(ranks)),
         "bytesAboveBase": s["bytesPerFineCellAboveBase"],
         "baseMiB": s["stages"]["coarse"]["peakMemoryBytes"]/1048576.0,
@@ -76,10 +78,10 @@ def run_one(args, geom, volume, coarse, levels, ranks):
         "peakMeasuredOverExpected":
             max(s["peakMemoryPerRankBytes"])/s["estimatedPeakMemoryPerRankBytes"],
     }
-    pb.log("    %-9s %-6s coarse %-6s r=%d P=%d: %8d cells, %.3f per regular, "
+    pb.log("    %-9s %-6s coarse %-6s r=%d P=%d: %8d cells, %.3f per weighted, "
            "%.0f B/cell above base, peak %.0f MiB (x%.2f of expected)"
            % (row["geometry"], volume, coarse, levels, ranks, row["fineCells"],
-              row["cellsPerRegular"], row["bytesAboveBase"], row["peakMiB"],
+              row["cellsPerWeighted"], row["bytesAboveBase"], row["peakMiB"],
               row["peakMeasuredOverExpected"]))
     return row
 
@@ -105,23 +107,23 @@ def main():
              "Measured by `bench/memoryFigures.py`; the estimate's figures in "
              "`src/pipeline/memoryEstimate.C` come from this table.", "",
              "| geometry | volumeMesher | coarseMesher | r | ranks | coarse cells | fine cells "
-             "| fine / regular | largest rank / mean | B/cell above base | base MiB "
+             "| fine / weighted | largest rank / mean | B/cell above base | base MiB "
              "| peak MiB | cells measured/expected | peak measured/expected |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         lines.append("| %s | %s | %s | %d | %d | %d | %d | %.3f | %.3f | %.0f | %.0f | %.0f "
                      "| %.2f | %.2f |"
                      % (r["geometry"], r["volumeMesher"], r["coarseMesher"], r["r"],
-                        r["ranks"], r["coarseCells"], r["fineCells"], r["cellsPerRegular"],
+                        r["ranks"], r["coarseCells"], r["fineCells"], r["cellsPerWeighted"],
                         r["largestRankShare"], r["bytesAboveBase"], r["baseMiB"],
                         r["peakMiB"], r["cellsMeasuredOverExpected"],
                         r["peakMeasuredOverExpected"]))
     lines.append("")
     for volume in sorted(set(r["volumeMesher"] for r in rows)):
         sel = [r for r in rows if r["volumeMesher"] == volume]
-        f = [r["cellsPerRegular"] for r in sel]
+        f = [r["cellsPerWeighted"] for r in sel]
         b = [r["bytesAboveBase"] for r in sel if r["fineCells"] >= 100000]
-        lines.append("- %s: fine / regular %.3f .. %.3f (mean %.3f); B/cell above base "
+        lines.append("- %s: fine / weighted %.3f .. %.3f (mean %.3f); B/cell above base "
                      "(runs of 100k cells or more) %s"
                      % (volume, min(f), max(f), sum(f)/len(f),
                         "%.0f .. %.0f (mean %.0f)" % (min(b), max(b), sum(b)/len(b))

@@ -6,7 +6,6 @@
 #include "tetFaceMatching.H"
 
 #include <algorithm>
-#include <cmath>
 #include <numeric>
 #include <thread>
 
@@ -149,38 +148,6 @@ void pmsh::broadcastCoarseMesh(const Communicator& comm, CoarseMesh& coarse)
         coarse.patches.push_back({std::string(it, end)});
         it = (end == names.end()) ? end : end + 1;
     }
-}
-
-
-std::vector<double> pmsh::regularFineCells
-(
-    const CoarseMesh& coarse,
-    int refinementLevels
-)
-{
-    // A regular tet of edge L has volume L^3/(6 sqrt 2): 6 V = L^3/sqrt 2
-    const double perLevel = std::pow(8.0, refinementLevels);
-    std::vector<double> cells(coarse.tets.size());
-    for (std::size_t c = 0; c < cells.size(); ++c)
-    {
-        const tetCell& t = coarse.tets[c];
-        double edges = 0;
-        for (int i = 0; i < 4; ++i)
-        {
-            for (int j = i + 1; j < 4; ++j)
-            {
-                edges += std::sqrt(magSqr(coarse.points[t[j]] - coarse.points[t[i]]));
-            }
-        }
-        const double L = edges/6;
-        const double volume6 = tetVolume6
-        (
-            coarse.points[t[0]], coarse.points[t[1]],
-            coarse.points[t[2]], coarse.points[t[3]]
-        );
-        cells[c] = perLevel*volume6*std::sqrt(2.0)/(L*L*L);
-    }
-    return cells;
 }
 
 

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <iomanip>
 #include <map>
 #include <numeric>
 #include <set>
@@ -344,6 +345,86 @@ label fillEmptyParts
     return moved;
 }
 
+
+// Is part p a manifold at the entity (as repairPass judges it): its cells
+// around the entity one face-connected group and, at a vertex, the other
+// cells with the outside one group too?
+bool manifoldAt
+(
+    const CoarseMesh& coarse,
+    const std::vector<faceNeighbours>& neighbours,
+    const std::vector<label>& entity,
+    const std::vector<label>& cells,
+    const std::vector<label>& cellPart,
+    label p
+)
+{
+    std::vector<bool> inPart(cells.size());
+    label nIn = 0;
+    for (std::size_t i = 0; i < cells.size(); ++i)
+    {
+        inPart[i] = cellPart[cells[i]] == p;
+        nIn += inPart[i];
+    }
+    if (nIn == 0 || nIn == label(cells.size()))
+    {
+        return true;
+    }
+    label nComp;
+    components(coarse, neighbours, entity, cells, inPart, nComp);
+    if (nComp > 1 || entity.size() > 1)
+    {
+        return nComp <= 1;
+    }
+    std::vector<bool> other(cells.size() + 1, true);
+    for (std::size_t i = 0; i < cells.size(); ++i)
+    {
+        other[i] = !inPart[i];
+    }
+    components(coarse, neighbours, entity, cells, other, nComp);
+    return nComp <= 1;
+}
+
+
+// Move cell c to part `to` if parts from and to stay manifolds at every
+// vertex and edge of c (the only entities the move changes); else leave it
+bool moveIfManifold
+(
+    const CoarseMesh& coarse,
+    const std::vector<faceNeighbours>& neighbours,
+    const coarsePointCells& vc,
+    label c,
+    label to,
+    std::vector<label>& cellPart
+)
+{
+    const label from = cellPart[c];
+    cellPart[c] = to;
+    const tetCell& t = coarse.tets[c];
+    bool ok = true;
+    for (int i = 0; i < 4 && ok; ++i)
+    {
+        const std::vector<label> around = vc.around(t[i]);
+        ok = manifoldAt(coarse, neighbours, {t[i]}, around, cellPart, from)
+          && manifoldAt(coarse, neighbours, {t[i]}, around, cellPart, to);
+        for (int j = i + 1; j < 4 && ok; ++j)
+        {
+            std::vector<label> cells;
+            for (label d : around)
+            {
+                if (tetHas(coarse.tets[d], t[j])) cells.push_back(d);
+            }
+            ok = manifoldAt(coarse, neighbours, {t[i], t[j]}, cells, cellPart, from)
+              && manifoldAt(coarse, neighbours, {t[i], t[j]}, cells, cellPart, to);
+        }
+    }
+    if (!ok)
+    {
+        cellPart[c] = from;
+    }
+    return ok;
+}
+
 } // End anonymous namespace
 
 
@@ -397,6 +478,116 @@ pmsh::label pmsh::countNonManifoldParts
     return repairPass(coarse, neighbours, coarsePointCells(coarse), parts, false, moved);
 }
 
+
+
+pmsh::label pmsh::balancePartition
+(
+    const CoarseMesh& coarse,
+    label nParts,
+    const std::vector<double>& weights,
+    std::vector<label>& cellPart,
+    double tolerance
+)
+{
+    const label nCells = coarse.nCells();
+    if (nParts < 2 || label(weights.size()) != nCells)
+    {
+        return 0;
+    }
+    const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
+    const coarsePointCells vc(coarse);
+
+    std::vector<double> load(nParts, 0);
+    std::vector<label> size(nParts, 0);
+    std::vector<std::vector<label>> members(nParts);
+    for (label c = 0; c < nCells; ++c)
+    {
+        load[cellPart[c]] += weights[c];
+        ++size[cellPart[c]];
+        members[cellPart[c]].push_back(c);
+    }
+    double total = 0;
+    for (double l : load) total += l;
+    const double target = (1 + tolerance)*total/nParts;
+
+    // The heaviest part gives boundary cells to lighter neighbours. A move
+    // is made only when the receiver stays lighter than the giver was, so
+    // the sum of squared loads falls with every move and this ends
+    label moved = 0;
+    std::vector<bool> stuck(nParts, false);
+    for (label iter = 0; iter < 10*nCells; ++iter)
+    {
+        label p = -1;
+        for (label q = 0; q < nParts; ++q)
+        {
+            if (!stuck[q] && (p < 0 || load[q] > load[p])) p = q;
+        }
+        if (p < 0 || load[p] <= target)
+        {
+            break;
+        }
+
+        // Candidates: (cell, receiving part), most faces towards the
+        // receiver and fewest towards the giver first (compact parts, few
+        // new interface faces), then the lightest receiver
+        struct move { label cell, to; int gain; };
+        std::vector<move> moves;
+        for (label c : members[p])
+        {
+            if (cellPart[c] != p) continue;
+            int toP = 0;
+            std::map<label, int> toOther;
+            for (label nbr : neighbours[c])
+            {
+                if (isBoundaryNeighbour(nbr)) continue;
+                if (cellPart[nbr] == p) ++toP;
+                else ++toOther[cellPart[nbr]];
+            }
+            for (const auto& [q, n] : toOther)
+            {
+                moves.push_back({c, q, n - toP});
+            }
+        }
+        std::stable_sort(moves.begin(), moves.end(), [&](const move& a, const move& b)
+        {
+            return a.gain != b.gain ? a.gain > b.gain : load[a.to] < load[b.to];
+        });
+
+        label movedNow = 0;
+        for (const move& m : moves)
+        {
+            if (load[p] <= target || size[p] <= 1) break;
+            const double w = weights[m.cell];
+            if (cellPart[m.cell] != p || load[m.to] + w >= load[p]) continue;
+            if (moveIfManifold(coarse, neighbours, vc, m.cell, m.to, cellPart))
+            {
+                load[p] -= w;
+                load[m.to] += w;
+                --size[p];
+                ++size[m.to];
+                members[m.to].push_back(m.cell);
+                ++movedNow;
+            }
+        }
+        if (movedNow)
+        {
+            auto& list = members[p];
+            list.erase
+            (
+                std::remove_if(list.begin(), list.end(), [&](label c) { return cellPart[c] != p; }),
+                list.end()
+            );
+            moved += movedNow;
+            std::fill(stuck.begin(), stuck.end(), false);
+        }
+        else
+        {
+            // Nothing to give: the other parts may still come down
+            stuck[p] = true;
+        }
+    }
+    return moved;
+}
 
 
 namespace
@@ -574,12 +765,44 @@ void checkDecompositionMethod(const Foam::dictionary& dict)
 }
 
 
+// The weights as a decompositionMethod takes them. metis turns them into
+// integers, weight/min(weights) rounded down: the lightest cell is set to
+// 1/50 of the mean, which makes the unit 2% of a mean cell (the others keep
+// theirs, and the sum stays below 2^31 up to 40M coarse cells)
+Foam::scalarField methodWeights(const std::vector<double>& weights, label nCells)
+{
+    if (label(weights.size()) != nCells || nCells == 0)
+    {
+        return Foam::scalarField(nCells, 1.0);
+    }
+    Foam::scalarField w(nCells);
+    double mean = 0;
+    for (label c = 0; c < nCells; ++c)
+    {
+        w[c] = weights[c];
+        mean += weights[c];
+    }
+    mean /= nCells;
+    const label lightest = label
+    (
+        std::min_element(weights.begin(), weights.end()) - weights.begin()
+    );
+    w[lightest] = std::min(w[lightest], mean/50);
+    for (label c = 0; c < nCells; ++c)
+    {
+        w[c] = std::max(w[c], mean/50);
+    }
+    return w;
+}
+
+
 // Decompose with OpenFOAM's decompositionMethod; cellPart[c] in [0, nParts)
 std::vector<label> decomposeCells
 (
     const CoarseMesh& coarse,
     label nParts,
-    const Foam::dictionary& decompositionDict
+    const Foam::dictionary& decompositionDict,
+    const std::vector<double>& cellWeights
 )
 {
     const label nCells = coarse.nCells();
@@ -590,11 +813,11 @@ std::vector<label> decomposeCells
     checkDecompositionMethod(dict);
 
     // The graph: the face neighbours of every coarse tet; the points: the
-    // tet centroids; the weights: 1
+    // tet centroids; the weights: the expected fine cells (else 1)
     const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
     Foam::labelListList cellCells(nCells);
     Foam::pointField centres(nCells);
-    const Foam::scalarField weights(nCells, 1.0);
+    const Foam::scalarField weights = methodWeights(cellWeights, nCells);
     for (label c = 0; c < nCells; ++c)
     {
         Foam::labelList& nbrs = cellCells[c];
@@ -833,7 +1056,8 @@ std::vector<pmsh::label> pmsh::partitionCells
 (
     const CoarseMesh& coarse,
     label nParts,
-    const Foam::dictionary& decompositionDict
+    const Foam::dictionary& decompositionDict,
+    const std::vector<double>& weights
 )
 {
     const label nCells = coarse.nCells();
@@ -853,9 +1077,46 @@ std::vector<pmsh::label> pmsh::partitionCells
         return std::vector<label>(nCells, 0);
     }
 
-    std::vector<label> cellPart = decomposeCells(coarse, nParts, decompositionDict);
+    std::vector<label> cellPart =
+        decomposeCells(coarse, nParts, decompositionDict, weights);
     repairPartition(coarse, nParts, cellPart);
+    if (weights.empty())
+    {
+        return cellPart;
+    }
+
+    // The method balances its (integer) weights within a few per cent, and
+    // the repair moves cells without looking at them: balance the parts'
+    // expected fine cells now, keeping every part a manifold
+    const double before = weightImbalance(weights, nParts, cellPart);
+    const label moved = balancePartition(coarse, nParts, weights, cellPart);
+    Info()
+        << std::fixed << std::setprecision(3)
+        << "    expected fine cells per part max/mean: " << before
+        << " from the method, "
+        << weightImbalance(weights, nParts, cellPart)
+        << " after moving " << moved << " coarse cells\n"
+        << std::defaultfloat;
     return cellPart;
+}
+
+
+double pmsh::weightImbalance
+(
+    const std::vector<double>& weights,
+    label nParts,
+    const std::vector<label>& cellPart
+)
+{
+    std::vector<double> load(nParts, 0);
+    double total = 0;
+    for (std::size_t c = 0; c < cellPart.size(); ++c)
+    {
+        const double w = weights.empty() ? 1.0 : weights[c];
+        load[cellPart[c]] += w;
+        total += w;
+    }
+    return total > 0 ? *std::max_element(load.begin(), load.end())*nParts/total : 1.0;
 }
 
 
@@ -863,7 +1124,8 @@ std::vector<pmsh::label> pmsh::partitionCoarseMesh
 (
     const Communicator& comm,
     const CoarseMesh& coarse,
-    const Foam::dictionary& decompositionDict
+    const Foam::dictionary& decompositionDict,
+    const std::vector<double>& fineWeights
 )
 {
     std::vector<label> cellPart;
@@ -871,7 +1133,7 @@ std::vector<pmsh::label> pmsh::partitionCoarseMesh
     {
         comm.masterWorksOthersSleep([&]
         {
-            cellPart = partitionCells(coarse, comm.size(), decompositionDict);
+            cellPart = partitionCells(coarse, comm.size(), decompositionDict, fineWeights);
         });
     });
     comm.broadcast(cellPart);

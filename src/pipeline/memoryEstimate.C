@@ -29,7 +29,7 @@
       sphereSTL  hxt    hxt    3  2    619    293217  1.152    158   113   134
       sphereSTL  hxt    hxt    4  1    612   2393611  1.200    131   114   412
 
-  "fine/regular" is fine cells over regularFineCells: the factor of the
+  "fine/regular" is fine cells over weightedFineCells: the factor of the
   volume and coarse meshers (an HXT coarse mesh has more, shorter edges for
   the same fine mesh). "B/cell >base" is the largest rank's peak above the
   stage-1 base per fine cell of that rank: Netgen's volume mesher holds
@@ -65,8 +65,8 @@ struct mesherFigures
 {
     const char* volumeMesher;
     const char* coarseMesher;
-    double cellsPerRegular;         //!< fine cells per regularFineCells
-    double leastCellsPerRegular;
+    double cellsPerWeighted;         //!< fine cells per weightedFineCells
+    double leastCellsPerWeighted;
     double bytesPerCell;            //!< peak bytes per fine cell above the base
     double leastBytesPerCell;
 };
@@ -135,7 +135,7 @@ std::string plural(double n, const std::string& word)
 
 pmsh::memoryEstimate pmsh::estimateMemory
 (
-    double regularFineCells,
+    double weightedFineCells,
     const std::string& volumeMesher,
     const std::string& coarseMesher,
     int nRanks,
@@ -145,12 +145,12 @@ pmsh::memoryEstimate pmsh::estimateMemory
     const mesherFigures& f = figuresOf(volumeMesher, coarseMesher);
     nRanks = std::max(nRanks, 1);
     memoryEstimate e;
-    e.fineCells = f.cellsPerRegular*regularFineCells;
+    e.fineCells = f.cellsPerWeighted*weightedFineCells;
     e.fineCellsPerRank = std::min(e.fineCells, largestRankShare*e.fineCells/nRanks);
     e.bytesPerRank = baseBytes + f.bytesPerCell*e.fineCellsPerRank;
     e.leastBytesPerRank =
         baseBytes
-      + f.leastBytesPerCell*f.leastCellsPerRegular*regularFineCells/nRanks;
+      + f.leastBytesPerCell*f.leastCellsPerWeighted*weightedFineCells/nRanks;
     return e;
 }
 
@@ -182,7 +182,7 @@ void pmsh::checkMemoryEstimate
 (
     const meshSettings& settings,
     globalLabel coarseCells,
-    double regularFineCells,
+    double weightedFineCells,
     int nRanks,
     int ranksOnMachine,
     double baseBytes,
@@ -200,20 +200,20 @@ void pmsh::checkMemoryEstimate
     const std::string& mesher = settings.volumeMesher;
     const std::string& coarseMesher = settings.coarseMesher;
     const memoryEstimate e =
-        estimateMemory(regularFineCells, mesher, coarseMesher, nRanks, baseBytes);
+        estimateMemory(weightedFineCells, mesher, coarseMesher, nRanks, baseBytes);
     if (ranksOnMachine*e.leastBytesPerRank <= machineBytes)
     {
         return;
     }
 
-    // The least memory of a rank with `regular` regularFineCells on `ranks`
+    // The least memory of a rank with `regular` weightedFineCells on `ranks`
     auto least = [&](double regular, int ranks)
     {
         return estimateMemory(regular, mesher, coarseMesher, ranks, baseBytes)
             .leastBytesPerRank;
     };
     const mesherFigures& f = figuresOf(mesher, coarseMesher);
-    const double leastFineCells = f.leastCellsPerRegular*regularFineCells;
+    const double leastFineCells = f.leastCellsPerWeighted*weightedFineCells;
 
     std::ostringstream os;
 
@@ -249,7 +249,7 @@ void pmsh::checkMemoryEstimate
     int fitLevels = -1;
     for (int l = r - 1; l >= 0; --l)
     {
-        if (ranksOnMachine*least(regularFineCells/std::pow(8.0, r - l), nRanks) <= machineBytes)
+        if (ranksOnMachine*least(weightedFineCells/std::pow(8.0, r - l), nRanks) <= machineBytes)
         {
             fitLevels = l;
             break;
@@ -334,7 +334,7 @@ pmsh::memoryEstimate pmsh::estimateAndCheckMemory
     const Communicator& comm,
     const meshSettings& settings,
     globalLabel coarseCells,
-    double regularFineCells,
+    double weightedFineCells,
     bool check
 )
 {
@@ -342,7 +342,7 @@ pmsh::memoryEstimate pmsh::estimateAndCheckMemory
     const double baseBytes = comm.max(double(peakMemoryBytes()));
     const memoryEstimate e = estimateMemory
     (
-        regularFineCells, settings.volumeMesher, settings.coarseMesher,
+        weightedFineCells, settings.volumeMesher, settings.coarseMesher,
         comm.size(), baseBytes
     );
     const double machineBytes = double(machineMemoryBytes());
@@ -359,7 +359,7 @@ pmsh::memoryEstimate pmsh::estimateAndCheckMemory
     {
         checkMemoryEstimate
         (
-            settings, coarseCells, regularFineCells, comm.size(),
+            settings, coarseCells, weightedFineCells, comm.size(),
             ranksOnMachine, baseBytes, machineBytes
         );
     }

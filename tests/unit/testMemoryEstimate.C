@@ -36,18 +36,18 @@ meshSettings sphereSettings(int levels, const std::string& mesher = "netgen", in
     return s;
 }
 
-//- regularFineCells of a coarse mesh for which `mesher` is expected to
+//- weightedFineCells of a coarse mesh for which `mesher` is expected to
 //  make `fineCells` cells
-double regularFor(double fineCells, const std::string& mesher)
+double weightedFor(double fineCells, const std::string& mesher)
 {
     return fineCells/estimateMemory(1, mesher, "netgen", 1, 0).fineCells;
 }
 
 //- The sphere tutorial's coarse mesh (917 cells) refined r times: about
 //  45k fine cells at r = 2 with Netgen
-double sphereRegular(int r)
+double sphereWeighted(int r)
 {
-    return regularFor(45000*std::pow(8.0, r - 2), "netgen");
+    return weightedFor(45000*std::pow(8.0, r - 2), "netgen");
 }
 
 void check
@@ -69,7 +69,7 @@ TEST(memoryEstimate, theHxtRunTheOldEstimateRefusedFitsAndARunTenTimesLargerDoes
 {
     // Sphere, maxCellSize 0.215, r = 5, hxt, 2 ranks: some 42 million
     // cells, ~7 GiB in all, was refused on 23.5 GiB (Netgen's figures)
-    const double regular = regularFor(42e6, "hxt");
+    const double regular = weightedFor(42e6, "hxt");
     EXPECT_NO_THROW(check(sphereSettings(5, "hxt"), regular, 2, 2, 23.5*GiB));
     EXPECT_THROW(check(sphereSettings(5, "hxt"), 10*regular, 2, 2, 23.5*GiB), FatalError);
 }
@@ -88,11 +88,11 @@ TEST(memoryEstimate, netgenHoldsFarMoreMemoryPerCellThanHxt)
 TEST(memoryEstimate, theCheckRefusesOnlyWhatSurelyDoesNotFit)
 {
     // Between the least and the expected need the run goes on
-    const memoryEstimate e = estimateMemory(sphereRegular(6), "netgen", "netgen", 1, base);
+    const memoryEstimate e = estimateMemory(sphereWeighted(6), "netgen", "netgen", 1, base);
     ASSERT_LT(e.leastBytesPerRank, e.bytesPerRank);
     const double between = 0.5*(e.leastBytesPerRank + e.bytesPerRank);
-    EXPECT_NO_THROW(check(sphereSettings(6), sphereRegular(6), 1, 1, between));
-    EXPECT_THROW(check(sphereSettings(6), sphereRegular(6), 1, 1, 0.99*e.leastBytesPerRank), FatalError);
+    EXPECT_NO_THROW(check(sphereSettings(6), sphereWeighted(6), 1, 1, between));
+    EXPECT_THROW(check(sphereSettings(6), sphereWeighted(6), 1, 1, 0.99*e.leastBytesPerRank), FatalError);
 }
 
 
@@ -113,14 +113,14 @@ TEST(memoryEstimate, aRunRefusedOnOneRankPassesOnMoreMachinesOrACoarserMesh)
     // The sphere at r = 6 (some 12 million cells with Netgen) does not fit
     // one 4 GiB machine; spread over 16 such machines it does, and so does
     // a coarse mesh 50 times smaller on one
-    EXPECT_THROW(check(sphereSettings(6), sphereRegular(6), 1, 1, 4*GiB), FatalError);
-    EXPECT_NO_THROW(check(sphereSettings(6), sphereRegular(6), 16, 1, 4*GiB));
-    EXPECT_NO_THROW(check(sphereSettings(6), sphereRegular(6)/50, 1, 1, 4*GiB));
+    EXPECT_THROW(check(sphereSettings(6), sphereWeighted(6), 1, 1, 4*GiB), FatalError);
+    EXPECT_NO_THROW(check(sphereSettings(6), sphereWeighted(6), 16, 1, 4*GiB));
+    EXPECT_NO_THROW(check(sphereSettings(6), sphereWeighted(6)/50, 1, 1, 4*GiB));
 
     // What does not fit at a level does not fit at any higher one
     for (int r = 7; r <= 10; ++r)
     {
-        EXPECT_THROW(check(sphereSettings(r), sphereRegular(r), 1, 1, 4*GiB), FatalError) << r;
+        EXPECT_THROW(check(sphereSettings(r), sphereWeighted(r), 1, 1, 4*GiB), FatalError) << r;
     }
 }
 
@@ -188,7 +188,7 @@ TEST(memoryEstimate, tooManyLevelsNameTheEntryTheEstimateTheMemoryAndTheWayOut)
 {
     const std::string m = errorOf
     (
-        [] { check(sphereSettings(10), sphereRegular(10), 1, 1, 16*GiB); }
+        [] { check(sphereSettings(10), sphereWeighted(10), 1, 1, 16*GiB); }
     );
     ASSERT_FALSE(m.empty()) << "refinementLevels 10 on 917 coarse cells passed";
     EXPECT_NE(m.find("/cases/sphere/system/pmshDict"), std::string::npos) << m;
@@ -214,15 +214,15 @@ TEST(memoryEstimate, suggestedLevelsFitAndOneMoreDoesNot)
     // passes, one level more it fails
     const std::string m = errorOf
     (
-        [] { check(sphereSettings(9), sphereRegular(9), 2, 2, 16*GiB); }
+        [] { check(sphereSettings(9), sphereWeighted(9), 2, 2, 16*GiB); }
     );
     const auto at = m.find("at most ");
     ASSERT_NE(at, std::string::npos) << m;
     const int levels = std::stoi(m.substr(at + 8));
-    EXPECT_NO_THROW(check(sphereSettings(levels), sphereRegular(levels), 2, 2, 16*GiB));
+    EXPECT_NO_THROW(check(sphereSettings(levels), sphereWeighted(levels), 2, 2, 16*GiB));
     EXPECT_THROW
     (
-        check(sphereSettings(levels + 1), sphereRegular(levels + 1), 2, 2, 16*GiB),
+        check(sphereSettings(levels + 1), sphereWeighted(levels + 1), 2, 2, 16*GiB),
         FatalError
     );
 }
@@ -234,16 +234,16 @@ TEST(memoryEstimate, suggestedMachineCountFits)
     // must pass the check
     const std::string m = errorOf
     (
-        [] { check(sphereSettings(7), sphereRegular(7), 4, 4, 16*GiB); }
+        [] { check(sphereSettings(7), sphereWeighted(7), 4, 4, 16*GiB); }
     );
     const auto at = m.find("at least ", m.find("more ranks"));
     ASSERT_NE(at, std::string::npos) << m;
     const double ranks = std::stod(m.substr(at + 9));
     EXPECT_EQ(std::fmod(ranks, 4), 0) << m;
-    EXPECT_NO_THROW(check(sphereSettings(7), sphereRegular(7), int(ranks), 4, 16*GiB));
+    EXPECT_NO_THROW(check(sphereSettings(7), sphereWeighted(7), int(ranks), 4, 16*GiB));
     EXPECT_THROW
     (
-        check(sphereSettings(7), sphereRegular(7), int(ranks) - 4, 4, 16*GiB),
+        check(sphereSettings(7), sphereWeighted(7), int(ranks) - 4, 4, 16*GiB),
         FatalError
     );
 }
@@ -253,7 +253,7 @@ TEST(memoryEstimate, suggestedMaxCellSizeFits)
 {
     const std::string m = errorOf
     (
-        [] { check(sphereSettings(7), sphereRegular(7), 1, 1, 16*GiB); }
+        [] { check(sphereSettings(7), sphereWeighted(7), 1, 1, 16*GiB); }
     );
     const auto at = m.find("maxCellSize: about ");
     ASSERT_NE(at, std::string::npos) << m;
@@ -261,7 +261,7 @@ TEST(memoryEstimate, suggestedMaxCellSizeFits)
     EXPECT_GT(h, 0.25);
 
     // Fine cells scale with 1/h^3
-    const double regular = sphereRegular(7)*std::pow(0.25/h, 3);
+    const double regular = sphereWeighted(7)*std::pow(0.25/h, 3);
     EXPECT_NO_THROW(check(sphereSettings(7), 0.99*regular, 1, 1, 16*GiB));
 }
 
@@ -269,12 +269,12 @@ TEST(memoryEstimate, suggestedMaxCellSizeFits)
 TEST(memoryEstimate, ranksSharingAMachineShareItsMemory)
 {
     // Four ranks that each fit a machine of their own do not all fit one
-    const memoryEstimate e = estimateMemory(sphereRegular(6), "netgen", "netgen", 4, base);
+    const memoryEstimate e = estimateMemory(sphereWeighted(6), "netgen", "netgen", 4, base);
     const double machine = 2*e.leastBytesPerRank;
-    EXPECT_NO_THROW(check(sphereSettings(6), sphereRegular(6), 4, 1, machine));
+    EXPECT_NO_THROW(check(sphereSettings(6), sphereWeighted(6), 4, 1, machine));
     const std::string m = errorOf
     (
-        [&] { check(sphereSettings(6), sphereRegular(6), 4, 4, machine); }
+        [&] { check(sphereSettings(6), sphereWeighted(6), 4, 4, machine); }
     );
     EXPECT_NE(m.find("for the 4 ranks on this machine"), std::string::npos) << m;
 }
@@ -284,7 +284,7 @@ TEST(memoryEstimate, aDefaultedEntrySaysSo)
 {
     const std::string m = errorOf
     (
-        [] { check(sphereSettings(9, "netgen", 0), sphereRegular(9), 1, 1, 16*GiB); }
+        [] { check(sphereSettings(9, "netgen", 0), sphereWeighted(9), 1, 1, 16*GiB); }
     );
     EXPECT_NE(m.find("'refinementLevels'"), std::string::npos) << m;
     EXPECT_NE(m.find("is not given: the default 9"), std::string::npos) << m;
@@ -293,7 +293,7 @@ TEST(memoryEstimate, aDefaultedEntrySaysSo)
 
 TEST(memoryEstimate, unknownMachineMemoryIsNotChecked)
 {
-    EXPECT_NO_THROW(check(sphereSettings(10), sphereRegular(10), 1, 1, 0));
+    EXPECT_NO_THROW(check(sphereSettings(10), sphereWeighted(10), 1, 1, 0));
 }
 
 
@@ -306,11 +306,11 @@ TEST(memoryEstimate, theSerialRunIsOneRankOnItsMachineAndNoMemoryCheckGoesOn)
     // The sphere tutorial at 10 levels cannot fit on any machine today
     const std::string m = errorOf
     (
-        [&] { estimateAndCheckMemory(serial, sphereSettings(10), 917, sphereRegular(10), true); }
+        [&] { estimateAndCheckMemory(serial, sphereSettings(10), 917, sphereWeighted(10), true); }
     );
     EXPECT_NE(m.find("'refinementLevels'"), std::string::npos) << m;
-    EXPECT_NO_THROW(estimateAndCheckMemory(serial, sphereSettings(10), 917, sphereRegular(10), false));
-    EXPECT_NO_THROW(estimateAndCheckMemory(serial, sphereSettings(1), 917, sphereRegular(1), true));
+    EXPECT_NO_THROW(estimateAndCheckMemory(serial, sphereSettings(10), 917, sphereWeighted(10), false));
+    EXPECT_NO_THROW(estimateAndCheckMemory(serial, sphereSettings(1), 917, sphereWeighted(1), true));
 }
 
 

@@ -3,6 +3,7 @@
 // surfaces, which the volume mesher needs.
 
 #include "partitionCoarseMesh.H"
+#include "fineCellWeights.H"
 #include "partitionSurface.H"
 #include "Geometry.H"
 #include "cubeMesh.H"
@@ -653,4 +654,75 @@ TEST_F(partition, moreRanksThanCoarseCellsIsAFatalErrorSayingWhatToDo)
         EXPECT_NE(std::string(e.what()).find("6 cells into 7 parts"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("maxCellSize"), std::string::npos);
     }
+}
+
+
+// * * * * * * * * * * * * * * * * * Balance * * * * * * * * * * * * * * * * //
+
+TEST_F(partition, fineCellWeightsFollowVolumeOverLocalSizeAndTheGeometry)
+{
+    // Scaled by 2, an inner cell's weight V/(H^2 h) grows 8/2 = 4 times;
+    // cells on the geometry weigh more than inner cells of the same shape
+    const CoarseMesh m = test::cubeMesh(4);
+    CoarseMesh big = m;
+    for (point& p : big.points) p = 2.0*p;
+    const std::vector<double> w = fineCellWeights(m, 1.0, 2);
+    const std::vector<double> wBig = fineCellWeights(big, 1.0, 2);
+    const std::vector<faceNeighbours> nbrs = coarseFaceNeighbours(m);
+    double inner = 0, outer = 0;
+    label nInner = 0, nOuter = 0;
+    for (std::size_t c = 0; c < w.size(); ++c)
+    {
+        EXPECT_GT(w[c], 0);
+        const bool onGeometry = std::any_of(nbrs[c].begin(), nbrs[c].end(), isBoundaryNeighbour);
+        if (onGeometry)
+        {
+            outer += w[c];
+            ++nOuter;
+        }
+        else
+        {
+            inner += w[c];
+            ++nInner;
+            EXPECT_NEAR(wBig[c]/w[c], 4.0, 1e-9) << "cell " << c;
+        }
+    }
+    ASSERT_GT(nInner, 0);
+    EXPECT_GT(outer/nOuter, 1.2*inner/nInner);
+}
+
+
+TEST_F(partition, balancedPartsCarryEqualWeightAndStayManifolds)
+{
+    // Cells in the half x < 0.5 weigh 3: unit weights would give parts of
+    // equal cell counts and unequal weight
+    const CoarseMesh m = test::cubeMesh(6);
+    std::vector<double> w(m.tets.size(), 1.0);
+    for (std::size_t c = 0; c < w.size(); ++c)
+    {
+        const tetCell& t = m.tets[c];
+        const double x = 0.25*(m.points[t[0]][0] + m.points[t[1]][0] + m.points[t[2]][0] + m.points[t[3]][0]);
+        if (x < 0.5) w[c] = 3;
+    }
+    for (label nParts : {2, 4, 7})
+    {
+        const std::vector<label> unit = partitionCells(m, nParts, dictOf("method simple; coeffs { n (" + std::to_string(nParts) + " 1 1); }"));
+        std::vector<label> part = unit;
+        ASSERT_GT(weightImbalance(w, nParts, part), 1.2) << nParts;
+        const label moved = balancePartition(m, nParts, w, part);
+        EXPECT_GT(moved, 0);
+        EXPECT_LT(weightImbalance(w, nParts, part), 1.05) << nParts << " parts";
+        expectGoodPartition(m, part, nParts, "balanced, " + std::to_string(nParts) + " parts");
+    }
+}
+
+
+TEST_F(partition, weightsGoThroughTheMethodAndTheBalance)
+{
+    const CoarseMesh m = test::cubeMesh(6);
+    std::vector<double> w(m.tets.size(), 1.0);
+    for (std::size_t c = 0; c < w.size(); c += 3) w[c] = 5;
+    const std::vector<label> part = partitionCells(m, 4, dictOf("method metis;"), w);
+    EXPECT_LT(weightImbalance(w, 4, part), 1.02);
+    expectGoodPartition(m, part, 4, "weighted metis");
 }

@@ -1,0 +1,59 @@
+"""Rank balance: with P ranks, no rank gets more than 5% above the mean of
+the fine cells (max/mean <= 1.05), for every tutorial at r = 2 (hxt, the
+fast backend; the counts come from the processor meshes themselves).
+bench/balance measures P = 2..64 and both backends.
+
+Run one test:  python3 testBalance.py balance.test_sphereNp4
+"""
+
+import os
+import sys
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from tutorialCase import PolyMeshFiles  # noqa: E402
+from testSerialTutorials import CaseTest  # noqa: E402
+
+
+class balance(CaseTest):
+
+    def fine_cells_per_rank(self, name, np):
+        c = self.case(name, refinementLevels=2, volumeMesher="hxt")
+        _, log = c.run("pmshFoam", np=np)
+        self.assertIn("End", log)
+        cells = []
+        for p in range(np):
+            mesh = PolyMeshFiles(os.path.join(c.dir, "processor%d/constant/polyMesh" % p))
+            cells.append(max(max(mesh.labels("owner")), max(mesh.labels("neighbour"))) + 1)
+        return cells
+
+    def assertBalanced(self, name, np):
+        cells = self.fine_cells_per_rank(name, np)
+        ratio = max(cells) * len(cells) / sum(cells)
+        self.assertLessEqual(ratio, 1.05, "%s on %d ranks: fine cells per rank %s, max/mean %.3f"
+                             % (name, np, cells, ratio))
+
+    def test_sphereNp2(self):
+        self.assertBalanced("sphere", 2)
+
+    def test_sphereNp4(self):
+        self.assertBalanced("sphere", 4)
+
+    def test_shaftNp2(self):
+        self.assertBalanced("shaft", 2)
+
+    # Not met yet: HXT fills the parts in the shaft's thin journal ~15% more
+    # densely than the weights predict (bench/results/balance.md)
+    @unittest.expectedFailure
+    def test_shaftNp4(self):
+        self.assertBalanced("shaft", 4)
+
+    def test_sphereSTLNp2(self):
+        self.assertBalanced("sphereSTL", 2)
+
+    def test_sphereSTLNp4(self):
+        self.assertBalanced("sphereSTL", 4)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
