@@ -6,35 +6,39 @@
   maxCellSize 0.3 (sphere, sphereSTL) and 0.45 (shaft):
 
       geometry   volume coarse  r  P  coarse    fine   fine/    B/cell  base  peak
-                                      cells     cells  regular  >base   MiB   MiB
-      sphere     netgen netgen 2  1    498     35801  1.519    112   114   118
-      sphere     netgen netgen 3  2    498    275934  1.463    549   113   192
-      sphere     netgen hxt    2  2    700     31579  0.900    222   112   115
-      sphere     hxt    netgen 3  1    498    317120  1.682    108   113   146
-      sphere     hxt    netgen 4  2    498   2415266  1.601    149   113   297
-      sphere     hxt    hxt    3  2    706    308007  1.098    159   112   136
-      sphere     hxt    hxt    4  1    727   2502266  1.087    134   113   432
-      shaft      netgen netgen 2  1    869     31111  0.729     87   115   117
-      shaft      netgen netgen 3  2    869    203843  0.597    164   114   130
-      shaft      netgen hxt    2  2   1088     31559  0.579    217   112   116
-      shaft      hxt    netgen 3  1    869    463750  1.358    106   114   161
-      shaft      hxt    netgen 4  2    869   2928474  1.072    154   114   335
-      shaft      hxt    hxt    3  2   1086    382314  0.883    157   112   140
-      shaft      hxt    hxt    4  1   1051   3656780  1.091    150   113   634
-      sphereSTL  netgen netgen 2  1    428     34363  1.620     91   115   118
-      sphereSTL  netgen netgen 3  2    428    290049  1.710    395   114   170
-      sphereSTL  netgen hxt    2  2    619     31209  0.967    179   113   116
-      sphereSTL  hxt    netgen 3  1    428    300301  1.770    106   115   145
-      sphereSTL  hxt    netgen 4  2    428   2340505  1.724    148   114   282
-      sphereSTL  hxt    hxt    3  2    619    293217  1.152    158   113   134
-      sphereSTL  hxt    hxt    4  1    612   2393611  1.200    131   114   412
+                                      cells     cells  weighted >base   MiB   MiB
+      sphere     netgen netgen 2  1    498     35801   4.589    105   114   117
+      sphere     netgen netgen 3  2    498    267209   4.699    464   113   172
+      sphere     netgen hxt    2  2    696     31880   3.728    219   112   115
+      sphere     hxt    netgen 3  1    498    317185   5.578    107   114   146
+      sphere     hxt    netgen 4  2    498   2433451   5.624    150   112   288
+      sphere     hxt    hxt    3  2    701    308084   4.852    159   112   135
+      sphere     hxt    hxt    4  1    685   2504511   5.188    134   113   432
+      shaft      netgen netgen 2  1    869     31111   5.352     91   115   118
+      shaft      netgen netgen 3  2    869    189273   5.062    164   114   128
+      shaft      netgen hxt    2  2   1036     31040   5.153    216   112   116
+      shaft      hxt    netgen 3  1    869    463527  12.397    106   115   162
+      shaft      hxt    netgen 4  2    869   2789550  10.619    159   114   329
+      shaft      hxt    hxt    3  2   1062    386677   9.827    159   112   142
+      shaft      hxt    hxt    4  1   1035   3654028  13.206    149   113   634
+      sphereSTL  netgen netgen 2  1    428     34363   4.615     91   115   118
+      sphereSTL  netgen netgen 3  2    428    256782   4.728    454   114   170
+      sphereSTL  netgen hxt    2  2    596     30409   3.726    176   113   116
+      sphereSTL  hxt    netgen 3  1    428    299709   5.519    105   115   145
+      sphereSTL  hxt    netgen 4  2    428   2326791   5.628    149   114   280
+      sphereSTL  hxt    hxt    3  2    599    290405   4.835    158   113   135
+      sphereSTL  hxt    hxt    4  1    626   2394048   5.137    131   114   413
 
-  "fine/regular" is fine cells over weightedFineCells: the factor of the
-  volume and coarse meshers (an HXT coarse mesh has more, shorter edges for
-  the same fine mesh). "B/cell >base" is the largest rank's peak above the
-  stage-1 base per fine cell of that rank: Netgen's volume mesher holds
-  2-4 times what HXT's does. Each pair of meshers gets its mean factor as
-  expected and, as least, a figure below every measured one; the bytes per
+  "fine/weighted" is fine cells over weightedFineCells: the factor of the
+  volume and coarse meshers. Netgen's stays within 3.7-5.4; HXT fills the
+  shaft's thin journal about twice as densely as the spheres (its size cap
+  does not hold there), so its factor spans 4.8-13.2 and an HXT estimate
+  can be 2x low on such a geometry (the check refuses on the least, which
+  stays below every measured run). "B/cell >base" is the largest rank's
+  peak above the stage-1 base per fine cell of that rank: Netgen's volume
+  mesher holds 2-4 times what HXT's does. Each pair of meshers gets about
+  its mean factor as expected and, as least, a figure below every measured
+  one; the bytes per
   cell likewise (from the runs of 100k cells or more, where the base does
   not hide them).
 \*---------------------------------------------------------------------------*/
@@ -73,10 +77,10 @@ struct mesherFigures
 
 const mesherFigures figures[] =
 {
-    {"netgen", "netgen", 1.2, 0.5, 400, 120},
-    {"netgen", "hxt", 0.8, 0.5, 400, 120},
-    {"hxt", "netgen", 1.5, 0.95, 150, 100},
-    {"hxt", "hxt", 1.05, 0.8, 150, 100}
+    {"netgen", "netgen", 4.8, 4.0, 400, 120},
+    {"netgen", "hxt", 4.2, 3.3, 400, 120},
+    {"hxt", "netgen", 7.0, 5.0, 150, 100},
+    {"hxt", "hxt", 7.0, 4.4, 150, 100}
 };
 
 //- The largest rank's share of the fine cells: the partition balances
