@@ -281,7 +281,7 @@ int main(int argc, char *argv[])
             (
                 pmsh::VolumeMesher::NewAll(settings.volumeMesher),
                 surface.points, surface.triangles,
-                pmsh::volumeParameters(settings, comm.rank()), comm.rank(),
+                pmsh::volumeParameters(settings, surface, comm.rank()), comm.rank(),
                 pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank())
             );
         });
@@ -303,6 +303,7 @@ int main(int argc, char *argv[])
           + " through the " + std::string(outputFileHandler) + " fileHandler"
         );
         pmsh::tetPolyMesh rankMesh;
+        pmsh::meshQualityReport quality;
         pmsh::failTogether(comm, [&]
         {
             rankMesh = pmsh::tetsToPolyMesh
@@ -339,6 +340,7 @@ int main(int argc, char *argv[])
             const pmsh::foamRankMesh foamMesh(output->time(), std::move(rankMesh));
             const fvMesh& mesh = foamMesh();
             foamMesh.write();
+            quality = pmsh::meshQualityOf(comm, mesh, volume);
             if (comm.parallel())
             {
                 #include "createFields.H"
@@ -350,11 +352,12 @@ int main(int argc, char *argv[])
             pmsh::writeDecomposeParDict(runTime, decomposition);
         }
         pmsh::logWritten(comm, runTime.globalPath(), sizes);
+        pmsh::logMeshQuality(comm, quality);
         stages.end();
 
         pmsh::reportSummary
         (
-            comm, runTime.globalPath(), settings, coarse, volume, nFineCells, stages
+            comm, runTime.globalPath(), settings, coarse, volume, nFineCells, quality, stages
         );
     }
     catch (const pmsh::collectiveFailure& e)
