@@ -108,6 +108,33 @@ double badness(const measure& m, bool nonOrthCounts)
     return nonOrthCounts ? std::max(m.tan2/nonOrthScale2, s) : s;
 }
 
+// Slivers (flat tets) can have faces of fair non-orthogonality and
+// skewness, yet checkMesh fails them (aspect ratio above 1000, or a volume
+// it finds negative): a tet whose volume is below 1/1000 of a regular
+// tet's on its longest edge is bad by that factor squared
+constexpr double sliverVolume = 1e-3;
+
+inline double sqr(double x) { return x*x; }
+
+double sliverBadness(const point& a, const point& b, const point& c, const point& d)
+{
+    double longest2 = 0;
+    const point* p[4] = {&a, &b, &c, &d};
+    for (int i = 0; i < 4; ++i)
+    {
+        for (int j = i + 1; j < 4; ++j)
+        {
+            longest2 = std::max(longest2, magSqr(*p[i] - *p[j]));
+        }
+    }
+    const double v6 = tetVolume6(a, b, c, d);
+    if (!(v6 > 0)) return infinite;
+    // Regular: v6 = L^3/sqrt(2)
+    const double relative = std::sqrt(2.0)*v6/(longest2*std::sqrt(longest2));
+    return relative < sliverVolume ? sqr(sliverVolume/relative) : 0;
+}
+
+
 double degrees(double tan2)
 {
     return std::atan(std::sqrt(tan2))*180/M_PI;
@@ -258,6 +285,13 @@ public:
 
     label nTets() const { return label(tets_.size()); }
 
+    //- How much of a sliver tet t is (0: none).
+    double sliver(label t) const
+    {
+        const tetCell& c = tets_[t];
+        return sliverBadness(points_[c[0]], points_[c[1]], points_[c[2]], points_[c[3]]);
+    }
+
     //- What is across face k of tet t: a tet, or a boundary kind (< 0).
     label across(label t, int k) const { return across_[4*t + k]; }
 
@@ -348,12 +382,6 @@ private:
         return badness(measureOf(c, k, u, pos), u != physicalBoundary);
     }
 
-    template<class Pos>
-    bool positive(const tetCell& c, const Pos& pos) const
-    {
-        return tetVolume6(pos(c[0]), pos(c[1]), pos(c[2]), pos(c[3])) > 0;
-    }
-
     //- Badness of every face of tets `set` (each face once), points from
     //  pos. `acrossOf(i, k)` says what is across face k of set[i]: a tet
     //  index outside the set, a boundary kind, or (via `inSet`) set member.
@@ -402,10 +430,12 @@ private:
         b.reserve(4*set.size());
         for (std::size_t i = 0; i < set.size(); ++i)
         {
-            if (!positive(set[i], pos))
+            const tetCell& c = set[i];
+            const double sliver = sliverBadness(pos(c[0]), pos(c[1]), pos(c[2]), pos(c[3]));
+            if (sliver > 0)
             {
-                b.push_back(infinite);
-                continue;
+                b.push_back(sliver);
+                if (!std::isfinite(sliver)) continue;
             }
             for (int k = 0; k < 4; ++k)
             {
@@ -539,8 +569,81 @@ private:
         return better(createdBadness, before);
     }
 
-    //- The best 2-3 or 3-2 flip involving tet t that makes its faces
-    //  better; false if there is none.
+    //- The points around edge a-b in order, given the tets around it;
+    //  empty unless they close a ring of 3..6.
+    std::vector<label> ringPoints(const std::vector<label>& ring, label a, label b) const
+    {
+        if (ring.size() < 3 || ring.size() > 6) return {};
+        std::vector<std::array<label, 2>> pairs;
+        for (label u : ring)
+        {
+            std::array<label, 2> pair{-1, -1};
+            int n = 0;
+            for (label q : tets_[u])
+            {
+                if (q != a && q != b) pair[n++] = q;
+            }
+            pairs.push_back(pair);
+        }
+        std::vector<label> polygon{pairs[0][0], pairs[0][1]};
+        std::vector<char> used(pairs.size(), 0);
+        used[0] = 1;
+        while (polygon.size() < pairs.size())
+        {
+            bool found = false;
+            for (std::size_t i = 0; i < pairs.size() && !found; ++i)
+            {
+                if (used[i]) continue;
+                for (int k = 0; k < 2 && !found; ++k)
+                {
+                    if (pairs[i][k] == polygon.back())
+                    {
+                        polygon.push_back(pairs[i][1 - k]);
+                        used[i] = found = true;
+                    }
+                }
+            }
+            if (!found) return {};
+        }
+        // The last unused pair closes the ring
+        for (std::size_t i = 0; i < pairs.size(); ++i)
+        {
+            if (used[i]) continue;
+            const auto& p = pairs[i];
+            const bool closes =
+                (p[0] == polygon.back() && p[1] == polygon.front())
+             || (p[1] == polygon.back() && p[0] == polygon.front());
+            if (!closes) return {};
+        }
+        std::vector<label> sorted(polygon);
+        std::sort(sorted.begin(), sorted.end());
+        if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return {};
+        return polygon;
+    }
+
+    //- Every triangulation of the polygon of corners i..j (indices).
+    static std::vector<std::vector<std::array<label, 3>>> triangulations(label i, label j)
+    {
+        if (j - i < 2) return {{}};
+        std::vector<std::vector<std::array<label, 3>>> all;
+        for (label k = i + 1; k < j; ++k)
+        {
+            for (const auto& left : triangulations(i, k))
+            {
+                for (const auto& right : triangulations(k, j))
+                {
+                    std::vector<std::array<label, 3>> t(left);
+                    t.insert(t.end(), right.begin(), right.end());
+                    t.push_back({i, k, j});
+                    all.push_back(t);
+                }
+            }
+        }
+        return all;
+    }
+
+    //- The best flip involving tet t (2-3, or an edge removal) that makes
+    //  its faces better; false if there is none.
     bool flip(label t)
     {
         const tetCell c = tets_[t];
@@ -585,8 +688,17 @@ private:
             );
         }
 
-        // 3-2: an edge a-b with exactly three tets around it, closed,
-        // becomes two tets on the triangle of their other points
+        // Edge removal: an edge a-b with n = 3..6 tets around it in a
+        // closed ring (an interior edge: at the boundary the fan is open)
+        // becomes 2(n - 2) tets, a and b joined to the triangles of a
+        // triangulation of the ring's points (the 3-2, 4-4, 5-6 and 6-8
+        // flips). Rings of more than 3 cost more and lock more points: they
+        // are for tets that smoothing does not mend, with all their points
+        // on the surface, and for slivers
+        bool movable = false;
+        for (label p : c) movable = movable || p >= nFixed_;
+        const bool isSliver = sliver(t) > 0;
+        const std::size_t maxRing = movable && !isSliver ? 3 : 6;
         static const int edges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
         for (const auto& e : edges)
         {
@@ -597,36 +709,28 @@ private:
             {
                 if (has(pointTets_[i], b)) ring.push_back(pointTets_[i]);
             }
-            if (ring.size() != 3) continue;
-            // The other two points of each tet: a closed ring has each
-            // twice (an open fan at the boundary has two of them once)
-            std::vector<label> others;
-            for (label u : ring)
+            if (ring.size() > maxRing) continue;
+            const std::vector<label> polygon = ringPoints(ring, a, b);
+            if (polygon.empty()) continue;
+            for (const auto& triangles : triangulations(0, label(polygon.size()) - 1))
             {
-                for (label q : tets_[u])
+                std::vector<tetCell> created;
+                for (const auto& t : triangles)
                 {
-                    if (q != a && q != b) others.push_back(q);
+                    const label x = polygon[t[0]], y = polygon[t[1]], z = polygon[t[2]];
+                    if (tetVolume6(points_[x], points_[y], points_[z], points_[a]) > 0)
+                    {
+                        created.push_back({x, y, z, a});
+                        created.push_back({x, z, y, b});
+                    }
+                    else
+                    {
+                        created.push_back({x, z, y, a});
+                        created.push_back({x, y, z, b});
+                    }
                 }
+                consider(ring, created);
             }
-            std::sort(others.begin(), others.end());
-            if
-            (
-                others[0] != others[1] || others[2] != others[3]
-             || others[4] != others[5] || others[1] == others[2]
-             || others[3] == others[4]
-            )
-            {
-                continue;
-            }
-            const label x = others[0], y = others[2], z = others[4];
-            const bool aAbove = tetVolume6(points_[x], points_[y], points_[z], points_[a]) > 0;
-            consider
-            (
-                ring,
-                aAbove
-              ? std::vector<tetCell>{{x, y, z, a}, {x, z, y, b}}
-              : std::vector<tetCell>{{x, z, y, a}, {x, y, z, b}}
-            );
         }
 
         if (bestOld.empty())
@@ -850,6 +954,10 @@ pmsh::qualityPassStats pmsh::improveWorstCells
         std::vector<std::pair<double, label>> visit;
         for (label t = 0; t < m.nTets(); ++t)
         {
+            if (m.sliver(t) > 0)
+            {
+                visit.push_back({m.sliver(t), t});
+            }
             for (int k = 0; k < 4; ++k)
             {
                 const double b = m.faceBadness(t, k);

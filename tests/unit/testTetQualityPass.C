@@ -16,6 +16,7 @@
 #include <cmath>
 #include <algorithm>
 #include <cstring>
+#include <map>
 
 using namespace pmsh;
 using namespace pmsh::test;
@@ -189,6 +190,62 @@ TEST(tetQualityPass, flipsAFlatPairIntoThreeTets)
     EXPECT_EQ(stats.nFlips, 1);
     EXPECT_EQ(m.tets.size(), 3u);
     EXPECT_LT(stats.worstAfter.skewness, stats.worstBefore.skewness);
+}
+
+
+TEST(tetQualityPass, removesASliverWithAllItsPointsFixed)
+{
+    // A flat tet on a unit square (diagonal a-c just above diagonal b-d)
+    // between two tets above its upper faces and two below its lower ones:
+    // its faces are fair (checkMesh's non-orthogonality and skewness
+    // would not flag it), but checkMesh fails its aspect ratio. Every
+    // point is fixed: only removing edge a-c (3-2) mends it
+    TetMesh m;
+    const double h = 1e-7;
+    m.points =
+    {
+        {0, 0, h}, {1, 0, -h}, {1, 1, h}, {0, 1, -h},   // a, b, c, d
+        {0.5, 0.5, 1}, {0.5, 0.5, -1}                   // above, below
+    };
+    m.tets = {{0, 1, 2, 3}, {4, 0, 1, 2}, {4, 0, 2, 3}, {5, 1, 3, 0}, {5, 1, 3, 2}};
+    for (tetCell& c : m.tets)
+    {
+        if (tetVolume6(m.points[c[0]], m.points[c[1]], m.points[c[2]], m.points[c[3]]) < 0)
+        {
+            std::swap(c[2], c[3]);
+        }
+    }
+    // The faces on one tet only, outward
+    std::map<std::array<label, 3>, std::pair<int, triFace>> faces;
+    for (const tetCell& c : m.tets)
+    {
+        for (const triFace& f : outwardTetFaces(c))
+        {
+            std::array<label, 3> key = f;
+            std::sort(key.begin(), key.end());
+            auto& entry = faces[key];
+            ++entry.first;
+            entry.second = f;
+        }
+    }
+    std::vector<triFace> triangles;
+    for (const auto& [key, entry] : faces)
+    {
+        if (entry.first == 1) triangles.push_back(entry.second);
+    }
+    ASSERT_TRUE(matchTetFaces(6, m.tets, triangles).fits());
+    const std::vector<point> before = m.points;
+
+    const qualityPassStats stats = improveWorstCells(m, 6, triangles, {}, 1);
+
+    expectValid(m, before, 6, triangles);
+    EXPECT_EQ(stats.nFlips, 1);
+    ASSERT_EQ(m.tets.size(), 4u);
+    for (const tetCell& c : m.tets)
+    {
+        const point* p[4] = {&m.points[c[0]], &m.points[c[1]], &m.points[c[2]], &m.points[c[3]]};
+        EXPECT_GT(tetVolume6(*p[0], *p[1], *p[2], *p[3]), 0.1);
+    }
 }
 
 
