@@ -315,7 +315,7 @@ int main(int argc, char *argv[])
             (
                 pmsh::VolumeMesher::NewAll(settings.volumeMesher),
                 surface.points, surface.triangles,
-                pmsh::volumeParameters(settings, comm.rank()),
+                pmsh::volumeParameters(settings, surface, comm.rank()),
                 pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank()),
                 "Try a smaller maxCellSize (a finer coarse mesh) or another"
                 " volumeMesher in system/pmshDict."
@@ -342,6 +342,7 @@ int main(int argc, char *argv[])
           + " through the " + std::string(outputFileHandler) + " fileHandler"
         );
         pmsh::tetPolyMesh rankMesh;
+        pmsh::meshQualityReport quality;
         pmsh::failTogether(comm, [&]
         {
             rankMesh = pmsh::tetsToPolyMesh
@@ -378,6 +379,7 @@ int main(int argc, char *argv[])
             const pmsh::foamRankMesh foamMesh(output->time(), std::move(rankMesh));
             const fvMesh& mesh = foamMesh();
             foamMesh.write();
+            quality = pmsh::meshQualityOf(comm, mesh, volume);
             if (comm.parallel())
             {
                 #include "createFields.H"
@@ -389,12 +391,13 @@ int main(int argc, char *argv[])
             pmsh::writeDecomposeParDict(runTime, decomposition);
         }
         pmsh::logWritten(comm, runTime.globalPath(), sizes);
+        pmsh::logMeshQuality(comm, quality);
         stages.end();
 
         pmsh::reportSummary
         (
             comm, runTime.globalPath(), settings, nCoarseCells, coarse.volumeMesher,
-            volume, nFineCells, stages, estimate
+            volume, nFineCells, quality, stages, estimate
         );
     }
     catch (const pmsh::collectiveFailure& e)

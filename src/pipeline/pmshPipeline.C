@@ -2,6 +2,7 @@
 #include "Info.H"
 #include "stageClock.H"
 #include "pmshError.H"
+#include "meshPatch.H"
 
 #include <algorithm>
 #include <filesystem>
@@ -19,10 +20,16 @@ std::string pmsh::rankPrefix(const Communicator& comm)
 pmsh::volumeMeshParameters pmsh::volumeParameters
 (
     const meshSettings& settings,
+    const FineSurface& surface,
     int rank
 )
 {
     volumeMeshParameters p;
+    p.interfaceTriangles.resize(surface.region.size());
+    for (std::size_t t = 0; t < surface.region.size(); ++t)
+    {
+        p.interfaceTriangles[t] = isInterfaceRegion(surface.region[t]);
+    }
     p.what = "partition " + std::to_string(rank);
     p.maxCellSize = settings.maxCellSize/double(1 << settings.refinementLevels);
     p.grading = settings.grading;
@@ -214,6 +221,7 @@ void pmsh::reportSummary
     const std::string& coarseMesher,
     const partitionVolumeResult& volume,
     globalLabel nFineCells,
+    const meshQualityReport& quality,
     const stageLog& stages,
     const memoryEstimate& estimate
 )
@@ -279,6 +287,11 @@ void pmsh::reportSummary
         << "    bytes per fine cell (all ranks): "
         << (nFineCells > 0 ? memorySum/nFineCells : 0)
         << ", above the stage 1 base (largest per rank): " << bytesAboveBase << '\n'
+        << "    max non-orthogonality (checkMesh): "
+        << quality.overall.maxNonOrthogonality << " degrees, average "
+        << quality.overall.avgNonOrthogonality << '\n'
+        << std::setprecision(3)
+        << "    max skewness (checkMesh): " << quality.overall.maxSkewness << '\n'
         << std::defaultfloat << std::setprecision(6);
     logEstimateAccuracy
     (
@@ -338,6 +351,32 @@ void pmsh::reportSummary
         << "  \"bytesSentPerRank\": " << jsonArray(bytesSentPerRank) << ",\n"
         << "  \"estimatedFineCells\": " << estimate.fineCells << ",\n"
         << "  \"estimatedFineCellsLargestRank\": " << estimate.fineCellsPerRank << ",\n"
-        << "  \"estimatedPeakMemoryPerRankBytes\": " << estimate.bytesPerRank << "\n"
+        << "  \"estimatedPeakMemoryPerRankBytes\": " << estimate.bytesPerRank << ",\n"
+        << "  \"quality\": {\n";
+    // One entry per measure: overall, then per rank
+    using measure = double meshQuality::*;
+    const std::vector<std::pair<const char*, measure>> measures
+    {
+        {"maxNonOrthogonality", &meshQuality::maxNonOrthogonality},
+        {"avgNonOrthogonality", &meshQuality::avgNonOrthogonality},
+        {"maxProcessorNonOrthogonality", &meshQuality::maxProcessorNonOrthogonality},
+        {"maxSkewness", &meshQuality::maxSkewness},
+        {"minVolume", &meshQuality::minVolume},
+        {"minDihedral", &meshQuality::minDihedral},
+        {"maxDihedral", &meshQuality::maxDihedral}
+    };
+    for (const auto& [name, m] : measures)
+    {
+        std::vector<double> perRank;
+        for (const meshQuality& q : quality.perRank) perRank.push_back(q.*m);
+        os  << "    " << jsonString(name) << ": " << quality.overall.*m << ",\n"
+            << "    " << jsonString(std::string(name) + "PerRank") << ": "
+            << jsonArray(perRank) << ",\n";
+    }
+    std::vector<double> severe;
+    for (const meshQuality& q : quality.perRank) severe.push_back(double(q.nSevereNonOrthogonal));
+    os  << "    \"severelyNonOrthogonalFaces\": " << quality.overall.nSevereNonOrthogonal << ",\n"
+        << "    \"severelyNonOrthogonalFacesPerRank\": " << jsonArray(severe) << "\n"
+        << "  }\n"
         << "}\n";
 }

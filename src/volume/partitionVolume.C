@@ -1,5 +1,6 @@
 #include "partitionVolume.H"
 #include "childProcess.H"
+#include "tetQualityPass.H"
 #include "pmshError.H"
 
 #include <algorithm>
@@ -108,6 +109,9 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
             result.backend = at.mesher->name();
             result.attempts = int(a) + 1;
             result.nCells = label(result.mesh.tets.size());
+            const dihedralRange dihedral = tetDihedralRange(result.mesh);
+            result.minDihedral = dihedral.min;
+            result.maxDihedral = dihedral.max;
             result.failures = failures;
             return result;
         }

@@ -1,0 +1,294 @@
+// The quality pass after HXT (tetQualityPass.H): face measures as
+// checkMesh's, flips and smoothing that make the worst faces better, the
+// boundary kept bit for bit, the tets positive and conforming.
+
+#include "tetQualityPass.H"
+#include "tetFaceMatching.H"
+#include "Geometry.H"
+#include "meshPatch.H"
+#include "partitionCoarseMesh.H"
+#include "surfaceRefinement.H"
+#include "testMeshers.H"
+#include "testPaths.H"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <algorithm>
+#include <cstring>
+#include <map>
+
+using namespace pmsh;
+using namespace pmsh::test;
+
+namespace
+{
+
+//- Worst internal-face non-orthogonality (degrees) of a tet mesh, with
+//  cell centres the mean of the points (as OpenFOAM's for a tet).
+double maxNonOrthogonality(const TetMesh& m)
+{
+    const tetFaceMatch match = matchTetFaces(m.points.size(), m.tets, {});
+    double worst = 0;
+    for (std::size_t t = 0; t < m.tets.size(); ++t)
+    {
+        for (int k = 0; k < 4; ++k)
+        {
+            const faceId other = match.across[4*t + k];
+            if (other == noFace || other/4 < t) continue;
+            const triFace f = tetFace(m.tets[t], k);
+            const tetCell& u = m.tets[other/4];
+            const label e = u[3 - int(other % 4)];
+            const faceQuality q = internalFaceQuality
+            (
+                m.points[f[0]], m.points[f[1]], m.points[f[2]],
+                m.points[m.tets[t][3 - k]], m.points[e]
+            );
+            worst = std::max(worst, q.nonOrthogonality);
+        }
+    }
+    return worst;
+}
+
+
+//- Throws unless the mesh keeps the first nFixed points of `before` bit
+//  for bit, has positive tets and has `triangles` as its boundary.
+void expectValid
+(
+    const TetMesh& m,
+    const std::vector<point>& before,
+    std::size_t nFixed,
+    const std::vector<triFace>& triangles
+)
+{
+    ASSERT_GE(m.points.size(), nFixed);
+    for (std::size_t i = 0; i < nFixed; ++i)
+    {
+        EXPECT_EQ(std::memcmp(m.points[i].data(), before[i].data(), sizeof(point)), 0)
+            << "boundary point " << i << " moved";
+    }
+    for (const tetCell& c : m.tets)
+    {
+        EXPECT_GT
+        (
+            tetVolume6(m.points[c[0]], m.points[c[1]], m.points[c[2]], m.points[c[3]]), 0
+        );
+    }
+    const tetFaceMatch match = matchTetFaces(m.points.size(), m.tets, triangles);
+    EXPECT_TRUE(match.fits()) << match.problems;
+}
+
+
+//- The unit cube's 12 outward boundary triangles on its 8 corners.
+std::vector<triFace> cubeTriangles()
+{
+    // Corner i at (i & 1, (i >> 1) & 1, (i >> 2) & 1)
+    return
+    {
+        {0, 2, 3}, {0, 3, 1},   // z = 0
+        {4, 5, 7}, {4, 7, 6},   // z = 1
+        {0, 1, 5}, {0, 5, 4},   // y = 0
+        {2, 6, 7}, {2, 7, 3},   // y = 1
+        {0, 4, 6}, {0, 6, 2},   // x = 0
+        {1, 3, 7}, {1, 7, 5}    // x = 1
+    };
+}
+
+std::vector<point> cubeCorners()
+{
+    std::vector<point> p;
+    for (int i = 0; i < 8; ++i)
+    {
+        p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+    }
+    return p;
+}
+
+} // End anonymous namespace
+
+
+TEST(tetQualityPass, faceMeasuresAsCheckMesh)
+{
+    const point a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+    const point centre{1.0/3, 1.0/3, 0};
+
+    // Apexes straight above and below the face centre: orthogonal
+    const faceQuality straight =
+        internalFaceQuality(a, b, c, centre + point{0, 0, -1}, centre + point{0, 0, 1});
+    EXPECT_NEAR(straight.nonOrthogonality, 0, 1e-9);
+    EXPECT_NEAR(straight.skewness, 0, 1e-9);
+
+    // The upper apex moved sideways by its height: the cell centres are a
+    // quarter of the way to the apexes, so the line between them leans by
+    // atan(1/2) and crosses the face 1/8 off its centre, which normalised
+    // by the face's extent that way (2/3) is a skewness of 0.1875
+    const faceQuality leaning =
+        internalFaceQuality(a, b, c, centre + point{0, 0, -1}, centre + point{1, 0, 1});
+    EXPECT_NEAR(leaning.nonOrthogonality, std::atan(0.5)*180/M_PI, 1e-9);
+    EXPECT_NEAR(leaning.skewness, 0.1875, 1e-9);
+
+    // A boundary face sees the line from its centre to the cell centre
+    const faceQuality boundary = boundaryFaceQuality(a, b, c, centre + point{1, 0, -1});
+    EXPECT_NEAR(boundary.nonOrthogonality, 45, 1e-9);
+}
+
+
+TEST(tetQualityPass, movesABadInteriorPointAndKeepsTheBoundary)
+{
+    // The cube as the star of one interior point, put close to a corner:
+    // the faces between the tets lean badly
+    TetMesh m;
+    m.points = cubeCorners();
+    m.points.push_back({0.1, 0.12, 0.08});
+    const std::vector<triFace> triangles = cubeTriangles();
+    for (const triFace& f : triangles)
+    {
+        // An outward triangle and a point inside: (a, c, b, p) is positive
+        m.tets.push_back({f[0], f[2], f[1], 8});
+    }
+    const std::vector<point> before = m.points;
+    const double worstBefore = maxNonOrthogonality(m);
+
+    const qualityPassStats stats = improveWorstCells(m, 8, triangles, {}, 3);
+
+    expectValid(m, before, 8, triangles);
+    EXPECT_GT(stats.nMoved, 0);
+    const double worstAfter = maxNonOrthogonality(m);
+    EXPECT_LT(worstAfter, worstBefore - 10) << "from " << worstBefore;
+    EXPECT_NEAR(stats.worstBefore.nonOrthogonality, worstBefore, 1e-9);
+}
+
+
+TEST(tetQualityPass, flipsAFlatPairIntoThreeTets)
+{
+    // Two flat tets on a large triangle, their apexes just above and below
+    // its centre, every point fixed: only a 2-3 flip can help, and the
+    // three tets around the edge between the apexes are far better
+    TetMesh m;
+    m.points =
+    {
+        {0, 0, 0}, {1, 0, 0}, {0.5, 0.9, 0},       // the shared face
+        {0.5, 0.3, -0.1}, {0.5, 0.3, 0.1}          // apexes below, above
+    };
+    // (d, a, b, c) is positive for the face (a, b, c) outward from it
+    m.tets = {{3, 0, 1, 2}, {4, 0, 2, 1}};
+    for (const tetCell& c : m.tets)
+    {
+        ASSERT_GT(tetVolume6(m.points[c[0]], m.points[c[1]], m.points[c[2]], m.points[c[3]]), 0);
+    }
+    const std::vector<triFace> triangles =
+    {
+        {3, 1, 0}, {3, 2, 1}, {3, 0, 2},            // lower tet's other faces
+        {4, 0, 1}, {4, 1, 2}, {4, 2, 0}             // upper tet's
+    };
+    ASSERT_TRUE(matchTetFaces(5, m.tets, triangles).fits());
+    const std::vector<point> before = m.points;
+
+    const qualityPassStats stats = improveWorstCells(m, 5, triangles, {}, 1);
+
+    expectValid(m, before, 5, triangles);
+    EXPECT_EQ(stats.nFlips, 1);
+    EXPECT_EQ(m.tets.size(), 3u);
+    EXPECT_LT(stats.worstAfter.skewness, stats.worstBefore.skewness);
+}
+
+
+TEST(tetQualityPass, removesASliverWithAllItsPointsFixed)
+{
+    // A flat tet on a unit square (diagonal a-c just above diagonal b-d)
+    // between two tets above its upper faces and two below its lower ones:
+    // its faces are fair (checkMesh's non-orthogonality and skewness
+    // would not flag it), but checkMesh fails its aspect ratio. Every
+    // point is fixed: only removing edge a-c (3-2) mends it
+    TetMesh m;
+    const double h = 1e-7;
+    m.points =
+    {
+        {0, 0, h}, {1, 0, -h}, {1, 1, h}, {0, 1, -h},   // a, b, c, d
+        {0.5, 0.5, 1}, {0.5, 0.5, -1}                   // above, below
+    };
+    m.tets = {{0, 1, 2, 3}, {4, 0, 1, 2}, {4, 0, 2, 3}, {5, 1, 3, 0}, {5, 1, 3, 2}};
+    for (tetCell& c : m.tets)
+    {
+        if (tetVolume6(m.points[c[0]], m.points[c[1]], m.points[c[2]], m.points[c[3]]) < 0)
+        {
+            std::swap(c[2], c[3]);
+        }
+    }
+    // The faces on one tet only, outward
+    std::map<std::array<label, 3>, std::pair<int, triFace>> faces;
+    for (const tetCell& c : m.tets)
+    {
+        for (const triFace& f : outwardTetFaces(c))
+        {
+            std::array<label, 3> key = f;
+            std::sort(key.begin(), key.end());
+            auto& entry = faces[key];
+            ++entry.first;
+            entry.second = f;
+        }
+    }
+    std::vector<triFace> triangles;
+    for (const auto& [key, entry] : faces)
+    {
+        if (entry.first == 1) triangles.push_back(entry.second);
+    }
+    ASSERT_TRUE(matchTetFaces(6, m.tets, triangles).fits());
+    const std::vector<point> before = m.points;
+
+    const qualityPassStats stats = improveWorstCells(m, 6, triangles, {}, 1);
+
+    expectValid(m, before, 6, triangles);
+    EXPECT_EQ(stats.nFlips, 1);
+    ASSERT_EQ(m.tets.size(), 4u);
+    for (const tetCell& c : m.tets)
+    {
+        const point* p[4] = {&m.points[c[0]], &m.points[c[1]], &m.points[c[2]], &m.points[c[3]]};
+        EXPECT_GT(tetVolume6(*p[0], *p[1], *p[2], *p[3]), 0.1);
+    }
+}
+
+
+TEST(tetQualityPass, partitionMeshesGetBetterAndKeepTheirSurface)
+{
+    // Both partitions of a refined sphere, with processor faces: Netgen's
+    // meshes without its optimiser, then the pass; and HXT with the pass
+    // (its contract, checked by VolumeMesher::mesh, holds)
+    auto g = Geometry::New(std::string(PMSH_TEST_DATA) + "/geometry/sphere.geo");
+    const CoarseMesh coarse = g->coarseMesh({0.3, 0.3});
+    const std::vector<label> cellPart = partitionCells(coarse, 2);
+    for (label part = 0; part < 2; ++part)
+    {
+        const FineSurface s = refinePartSurface(coarse, cellPart, part, g.get(), 2);
+        volumeMeshParameters p;
+        p.maxCellSize = 0.3/4;
+        for (label region : s.region)
+        {
+            p.interfaceTriangles.push_back(isInterfaceRegion(region));
+        }
+        ASSERT_TRUE
+        (
+            std::find(p.interfaceTriangles.begin(), p.interfaceTriangles.end(), 1)
+         != p.interfaceTriangles.end()
+        );
+
+        p.optimisationSteps = 0;
+        TetMesh m = VolumeMesher::New("netgen")->mesh(s.points, s.triangles, p);
+        const double worstBefore = maxNonOrthogonality(m);
+        const qualityPassStats stats = improveWorstCells
+        (
+            m, label(s.points.size()), s.triangles, p.interfaceTriangles, 3
+        );
+        expectValid(m, s.points, s.points.size(), s.triangles);
+        EXPECT_GT(stats.nFlips + stats.nMoved, 0);
+        EXPECT_LT(maxNonOrthogonality(m), worstBefore - 5) << "partition " << part;
+        EXPECT_LE(stats.worstAfter.skewness, stats.worstBefore.skewness);
+
+        p.optimisationSteps = 3;
+        const TetMesh h = VolumeMesher::New("hxt")->mesh(s.points, s.triangles, p);
+        expectValid(h, s.points, s.points.size(), s.triangles);
+    }
+}
+
+
+// ************************************************************************* //
