@@ -92,6 +92,8 @@ def fmt(v, digits=2):
 # ---------------------------------------------------------------------------
 
 COARSE_TARGETS = [100000, 500000, 1000000]
+# 1M coarse cells on the sphere only: Netgen takes minutes per run there
+COARSE_TARGETS_OTHERS = [100000, 500000]
 
 
 def coarse_case(args, geom, mesher, h, tag):
@@ -155,23 +157,56 @@ def coarse_quality(args, geom, coarse_mesher, volume_mesher, levels=2, ranks=2):
     return row
 
 
+LOG_LINE = re.compile(r"^\s+(\w+)\s+coarseMesher (\w+)\s+maxCellSize ([0-9.eE+-]+):\s+(\d+) coarse "
+                      r"cells, stage 1 ([0-9.]+) s \(filled by (\w+)\), partition ([0-9.]+) s, "
+                      r"peak ([0-9.]+) MiB, load ([0-9.]+)", re.M)
+
+
+def rows_from_log(path, mesher):
+    """The rows of an earlier --coarse run's log for one coarse mesher (the
+    probe of each geometry first, then its targets in order)"""
+    with open(path) as f:
+        found = [m for m in LOG_LINE.finditer(f.read()) if m.group(2) == mesher]
+    rows, seen = [], {}
+    for m in found:
+        geom = m.group(1)
+        k = seen.get(geom, 0)
+        seen[geom] = k + 1
+        if k == 0:
+            continue    # the probe
+        targets = COARSE_TARGETS if geom == "sphere" else COARSE_TARGETS_OTHERS
+        rows.append({"geometry": geom, "coarseMesher": mesher, "maxCellSize": float(m.group(3)),
+                     "ranks": 2, "coarseCells": int(m.group(4)), "coarseTime": float(m.group(5)),
+                     "filledBy": m.group(6), "partitionTime": float(m.group(7)),
+                     "peakMiB": float(m.group(8)), "load": float(m.group(9)),
+                     "target": targets[k - 1], "fromLog": path})
+    return rows
+
+
 def mode_coarse(args):
     res = {"machine": pb.machine_description(args), "stages": [], "quality": []}
+    meshers = ("netgen", "hxt")
+    if args.netgen_from_log:
+        # Netgen's rows of an earlier run (its coarse path unchanged since)
+        res["stages"] += rows_from_log(args.netgen_from_log, "netgen")
+        res["netgenFromLog"] = args.netgen_from_log
+        meshers = ("hxt",)
     for geom in GEOMETRIES:
-        for mesher in ("netgen", "hxt"):
+        for mesher in meshers:
             # Coarse cells scale with 1/maxCellSize^3: a probe at the
             # tutorial's size, then one run per target
             h0 = TUTORIAL_SIZE[geom["name"]]
             probe = run_coarse_stage(args, geom, mesher, h0, "probe")
             if "error" in probe:
                 continue
-            for target in COARSE_TARGETS:
+            targets = COARSE_TARGETS if geom["name"] == "sphere" else COARSE_TARGETS_OTHERS
+            for target in targets:
                 h = h0*(probe["coarseCells"]/float(target))**(1.0/3.0)
                 row = run_coarse_stage(args, geom, mesher, h, "%d" % target)
                 row["target"] = target
                 res["stages"].append(row)
     for geom in GEOMETRIES:
-        for volume in ("netgen", "hxt"):
+        for volume in ("hxt", "netgen") if geom["name"] == "sphere" else ("hxt",):
             for coarse in ("netgen", "hxt"):
                 res["quality"].append(coarse_quality(args, geom, coarse, volume))
     write_json(args, "coarse-stage.json", res)
@@ -767,6 +802,10 @@ def main():
     parser.add_argument("--pmshFoam", default=shutil.which("pmshFoam") or "pmshFoam")
     parser.add_argument("--note", default="")
     parser.add_argument("--keep", action="store_true", help="keep the scratch cases")
+    parser.add_argument("--netgen-from-log", metavar="LOG",
+                        help="--coarse: take coarseMesher netgen's rows from an earlier run's log")
+    parser.add_argument("--no-build", action="store_true",
+                        help="(bench/run: do not build first)")
     parser.add_argument("--coarseMesher", default="hxt",
                         help="coarse mesher of the --scaling runs (default hxt)")
     parser.add_argument("--rewrite", action="store_true",

@@ -145,9 +145,14 @@ TEST_F(meshSettingsTest, optionalEntriesHaveTheirDefaults)
     EXPECT_EQ(s.refinementLevels, 1);
     EXPECT_EQ(s.refinementLevelsLine, 0);
     EXPECT_EQ(s.volumeMesher, "netgen");
+    EXPECT_EQ(s.coarseMesher, "netgen");
     EXPECT_EQ(s.optimisationSteps, 3);
     EXPECT_EQ(s.volumeMesherThreads, 1);
     EXPECT_EQ(s.patches.size(), 0);
+
+    // The volume mesher fills the coarse surface too, unless told
+    EXPECT_EQ(read(minimal() + "volumeMesher hxt;\n").coarseMesher, "hxt");
+    EXPECT_EQ(read(minimal() + "volumeMesher hxt;\ncoarseMesher netgen;\n").coarseMesher, "netgen");
     EXPECT_EQ(s.patchType("anything"), "wall");
 }
 
