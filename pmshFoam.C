@@ -379,11 +379,13 @@ int main(int argc, char *argv[])
             const pmsh::foamRankMesh foamMesh(output->time(), std::move(rankMesh));
             const fvMesh& mesh = foamMesh();
             foamMesh.write();
-            quality = pmsh::meshQualityOf(comm, mesh, volume);
             if (comm.parallel())
             {
                 #include "createFields.H"
             }
+            // Last, once the fields are gone: the mesh geometry it needs is
+            // the peak of this stage
+            quality = pmsh::meshQualityOf(comm, mesh, volume);
         });
         output->commit();
         if (comm.parallel())

@@ -424,7 +424,7 @@ meshSettings readMeshSettings
     }
     s.volumeMesher = choice(dict, "volumeMesher", "netgen", VolumeMesher::names());
     // By default the volume mesher fills the coarse surface too: HXT is
-    // 30-50x faster there at the fine quality HXT gives anyway, while
+    // 4-27x faster per cell there at the fine quality HXT gives anyway, while
     // Netgen's fine meshes are up to 10 degrees better on a Netgen coarse
     // mesh (bench/results/coarse-stage.md)
     s.coarseMesher = choice(dict, "coarseMesher", s.volumeMesher, VolumeMesher::names());

@@ -2,7 +2,6 @@
 #include "Info.H"
 #include "stageLog.H"
 
-#include "polyMeshTools.H"
 #include "syncTools.H"
 #include "unitConversion.H"
 
@@ -22,6 +21,127 @@ double degreesOfCos(double c)
 } // End anonymous namespace
 
 
+namespace
+{
+
+using namespace Foam;
+
+// The geometry of OpenFOAM's primitiveMesh (v1912), computed face by face
+// from the points: the mesh's own faceCentres()/faceAreas()/cellCentres()
+// would keep three face fields and two cell fields (about 130 bytes per
+// cell), the largest part of stage 6's peak. Only the cell centres and
+// volumes are kept here; the formulas are primitiveMesh's, so the figures
+// are checkMesh's.
+
+//- primitiveMeshFaceCentresAndAreas for a triangle (every face here)
+inline void triangleCentreAndArea
+(
+    const pointField& p,
+    const face& f,
+    vector& centre,
+    vector& area
+)
+{
+    centre = (1.0/3.0)*(p[f[0]] + p[f[1]] + p[f[2]]);
+    area = 0.5*((p[f[1]] - p[f[0]]) ^ (p[f[2]] - p[f[0]]));
+}
+
+
+//- primitiveMeshCellCentresAndVols: the face-pyramid decomposition about
+//  the mean of the cell's face centres
+void cellCentresAndVolumes
+(
+    const polyMesh& mesh,
+    pointField& centres,
+    scalarField& volumes
+)
+{
+    const pointField& p = mesh.points();
+    const faceList& faces = mesh.faces();
+    const labelList& own = mesh.faceOwner();
+    const labelList& nei = mesh.faceNeighbour();
+
+    vectorField estimate(mesh.nCells(), Zero);
+    {
+        labelField nCellFaces(mesh.nCells(), 0);
+        vector c, s;
+        forAll(own, facei)
+        {
+            triangleCentreAndArea(p, faces[facei], c, s);
+            estimate[own[facei]] += c;
+            ++nCellFaces[own[facei]];
+        }
+        forAll(nei, facei)
+        {
+            triangleCentreAndArea(p, faces[facei], c, s);
+            estimate[nei[facei]] += c;
+            ++nCellFaces[nei[facei]];
+        }
+        forAll(estimate, celli)
+        {
+            estimate[celli] /= nCellFaces[celli];
+        }
+    }
+
+    centres = Zero;
+    volumes = 0;
+    vector c, s;
+    forAll(own, facei)
+    {
+        triangleCentreAndArea(p, faces[facei], c, s);
+        const scalar pyr3Vol = s & (c - estimate[own[facei]]);
+        centres[own[facei]] += pyr3Vol*((3.0/4.0)*c + (1.0/4.0)*estimate[own[facei]]);
+        volumes[own[facei]] += pyr3Vol;
+    }
+    forAll(nei, facei)
+    {
+        triangleCentreAndArea(p, faces[facei], c, s);
+        const scalar pyr3Vol = s & (estimate[nei[facei]] - c);
+        centres[nei[facei]] += pyr3Vol*((3.0/4.0)*c + (1.0/4.0)*estimate[nei[facei]]);
+        volumes[nei[facei]] += pyr3Vol;
+    }
+    forAll(centres, celli)
+    {
+        if (mag(volumes[celli]) > VSMALL)
+        {
+            centres[celli] /= volumes[celli];
+        }
+        else
+        {
+            centres[celli] = estimate[celli];
+        }
+    }
+    volumes *= (1.0/3.0);
+}
+
+
+//- primitiveMeshTools::faceSkewness (d: owner to neighbour centre) and
+//  boundaryFaceSkewness (d: the normal part of the owner's offset, with
+//  its own normalisation), as polyMeshTools::faceSkewness applies them
+inline scalar skewness
+(
+    const pointField& p,
+    const face& f,
+    const vector& centre,
+    const vector& area,
+    const vector& Cpf,
+    const vector& d,
+    const scalar fd0
+)
+{
+    const vector sv = Cpf - ((area & Cpf)/((area & d) + ROOTVSMALL))*d;
+    const vector svHat = sv/(mag(sv) + ROOTVSMALL);
+    scalar fd = fd0*mag(d) + ROOTVSMALL;
+    forAll(f, pi)
+    {
+        fd = max(fd, mag(svHat & (p[f[pi]] - centre)));
+    }
+    return mag(sv)/fd;
+}
+
+} // End anonymous namespace
+
+
 pmsh::meshQualityReport pmsh::meshQualityOf
 (
     const Communicator& comm,
@@ -31,41 +151,70 @@ pmsh::meshQualityReport pmsh::meshQualityOf
 {
     using namespace Foam;
 
-    // checkMesh's fields: the processor faces see the neighbour rank's
-    // cell centres (swapped inside, collective)
-    const vectorField& areas = mesh.faceAreas();
-    const vectorField& centres = mesh.cellCentres();
-    const tmp<scalarField> tortho =
-        polyMeshTools::faceOrthogonality(mesh, areas, centres);
-    const tmp<scalarField> tskew = polyMeshTools::faceSkewness
-    (
-        mesh, mesh.points(), mesh.faceCentres(), areas, centres
-    );
-    const scalarField& ortho = tortho();
-    const scalarField& skew = tskew();
+    const pointField& p = mesh.points();
+    const faceList& faces = mesh.faces();
+    const labelList& own = mesh.faceOwner();
+    const label nInternal = mesh.nInternalFaces();
 
-    // As checkMesh: statistics over internal faces and one side of each
-    // processor face (uncoupled boundary faces have orthogonality 1)
-    const bitSet counted(syncTools::getInternalOrMasterFaces(mesh));
-    const double severeCos = std::cos(degToRad(70.0));
-    double minCos = 1, sumCos = 0, minProcessorCos = 1;
-    std::int64_t nCounted = 0, nSevere = 0;
-    for (label facei = 0; facei < mesh.nFaces(); ++facei)
+    pointField centres(mesh.nCells());
+    scalarField volumes(mesh.nCells());
+    cellCentresAndVolumes(mesh, centres, volumes);
+
+    // checkMesh -parallel: processor faces see the neighbour rank's cell
+    // centres (swapped inside, collective)
+    pointField neighbourCentres;
+    syncTools::swapBoundaryCellPositions(mesh, centres, neighbourCentres);
+    std::vector<bool> coupled(mesh.nBoundaryFaces(), false);
+    for (const polyPatch& pp : mesh.boundaryMesh())
     {
-        if (counted.test(facei))
+        if (pp.coupled())
         {
-            minCos = std::min(minCos, double(ortho[facei]));
-            sumCos += ortho[facei];
-            ++nCounted;
-            if (ortho[facei] < severeCos) ++nSevere;
-        }
-        if (!mesh.isInternalFace(facei))
-        {
-            minProcessorCos = std::min(minProcessorCos, double(ortho[facei]));
+            for (label i = 0; i < pp.size(); ++i)
+            {
+                coupled[pp.start() + i - nInternal] = true;
+            }
         }
     }
-    const double maxSkew = skew.empty() ? 0 : double(max(skew));
-    const double minVolume = mesh.nCells() ? double(min(mesh.cellVolumes())) : 0;
+
+    // As checkMesh: non-orthogonality over internal faces and one side of
+    // each processor face (uncoupled boundary faces have none), skewness
+    // over every face
+    const bitSet counted(syncTools::getInternalOrMasterFaces(mesh));
+    const double severeCos = std::cos(degToRad(70.0));
+    double minCos = 1, sumCos = 0, minProcessorCos = 1, maxSkew = 0;
+    std::int64_t nCounted = 0, nSevere = 0;
+    Foam::vector c, s;
+    for (label facei = 0; facei < mesh.nFaces(); ++facei)
+    {
+        const face& f = faces[facei];
+        triangleCentreAndArea(p, f, c, s);
+        const Foam::point& ownCc = centres[own[facei]];
+        const Foam::vector Cpf = c - ownCc;
+        const bool internal = facei < nInternal;
+        if (!internal && !coupled[facei - nInternal])
+        {
+            const Foam::vector normal = s/(mag(s) + ROOTVSMALL);
+            maxSkew = std::max(maxSkew, double(skewness(p, f, c, s, Cpf, normal*(normal & Cpf), 0.4)));
+            continue;
+        }
+        const Foam::point& neiCc =
+            internal ? centres[mesh.faceNeighbour()[facei]] : neighbourCentres[facei - nInternal];
+        const Foam::vector d = neiCc - ownCc;
+        const double ortho = (d & s)/(mag(d)*mag(s) + ROOTVSMALL);
+        maxSkew = std::max(maxSkew, double(skewness(p, f, c, s, Cpf, d, 0.2)));
+        if (counted.test(facei))
+        {
+            minCos = std::min(minCos, ortho);
+            sumCos += ortho;
+            ++nCounted;
+            if (ortho < severeCos) ++nSevere;
+        }
+        if (!internal)
+        {
+            minProcessorCos = std::min(minProcessorCos, ortho);
+        }
+    }
+    const double minVolume = mesh.nCells() ? double(min(volumes)) : 0;
 
     meshQualityReport report;
     const std::vector<double> minCosR = comm.allGather(minCos);
