@@ -258,7 +258,6 @@ int main(int argc, char *argv[])
         // Expected fine cells of every coarse cell (the master's): the
         // partition balances them, the memory estimate sums them
         std::vector<double> fineWeights;
-        pmsh::memoryEstimate estimate;
         pmsh::failTogether(comm, [&]
         {
             if (comm.master())
@@ -268,6 +267,10 @@ int main(int argc, char *argv[])
                     coarse, settings.maxCellSize, settings.refinementLevels
                 );
             }
+        });
+        pmsh::memoryEstimate estimate;
+        pmsh::failTogether(comm, [&]
+        {
             const double weightSum =
                 comm.sum(std::accumulate(fineWeights.begin(), fineWeights.end(), 0.0));
 
