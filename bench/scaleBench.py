@@ -394,23 +394,29 @@ def mode_massive(args):
     if m["ranks"]*per_rank < 0.9*mem_available():
         ok, non_ortho, avg, skew, text = check_mesh(case, m["ranks"])
         checks.append({"how": "checkMesh -parallel", "ok": ok, "maxNonOrtho": non_ortho,
-                       "avgNonOrtho": avg, "maxSkewness": skew})
+                       "avgNonOrtho": avg, "maxSkewness": skew, "failed": failed_checks(text)})
     else:
         for p in range(m["ranks"]):
             ok, non_ortho, avg, skew, text = check_mesh(
                 os.path.join(case, "processor%d" % p), 1)
             checks.append({"how": "checkMesh -case processor%d (serial)" % p, "ok": ok,
                            "maxNonOrtho": non_ortho, "avgNonOrtho": avg,
-                           "maxSkewness": skew})
+                           "maxSkewness": skew, "failed": failed_checks(text)})
     for c in checks:
-        pb.log("  %s: %s" % (c["how"], "Mesh OK" if c["ok"] else "FAILED"))
+        pb.log("  %s: %s" % (c["how"], "Mesh OK" if c["ok"] else "FAILED: " + "; ".join(c["failed"])))
     res["checkMesh"] = checks
     res["addressing"] = check_addressing(case, m["ranks"])
     pb.log("  procAddressing: %s" % ("OK" if res["addressing"]["ok"] else res["addressing"]))
     write_json(args, "massive.json", res)
     write_massive_markdown(args, res)
-    if not args.keep:
+    # A case that failed a check stays for a look
+    if not args.keep and all(c["ok"] for c in checks) and res["addressing"]["ok"]:
         shutil.rmtree(case, ignore_errors=True)
+
+
+def failed_checks(text):
+    """checkMesh's lines for the checks that failed ("***...")"""
+    return [l.strip() for l in text.splitlines() if l.strip().startswith("***")]
 
 
 def write_massive_markdown(args, res):
@@ -420,7 +426,9 @@ def write_massive_markdown(args, res):
     per_rank = [["%d" % p, "%d" % c, "%.2f" % (b/2**30), "%.0f" % (b/c)]
                 for p, (c, b) in enumerate(zip(s["fineCellsPerRank"],
                                                s["peakMemoryPerRankBytes"]))]
-    checks = [[c["how"], "Mesh OK" if c["ok"] else "FAILED", fmt(c["maxNonOrtho"], 1),
+    checks = [[c["how"], "Mesh OK" if c["ok"] else
+               " ".join(["FAILED"] + c.get("failed", [])),
+               fmt(c["maxNonOrtho"], 1),
                fmt(c["avgNonOrtho"], 1), fmt(c["maxSkewness"], 2)] for c in res["checkMesh"]]
     a = res["addressing"]
     text = "\n".join([
