@@ -653,9 +653,9 @@ def build_models(args, res):
     # Partition time grows with log2 P: fit d from the measured runs
     part = [(r["ranks"], r["stages"]["partition"]) for r in runs if r["ranks"] > 1]
     coarse_cells = runs[0]["coarseCells"]
-    t2 = by_p[2]["stages"]["partition"] if 2 in by_p else part[0][1]
-    t64 = part[-1][1]
-    d = max(0.0, (t64/t2 - 1)/(math.log2(part[-1][0]) - 1) - 0) if t2 > 0 else 0.0
+    # ... from the smallest and the largest P measured (2 and 64)
+    (p0, t0), (p1, t1) = part[0], part[-1]
+    d = max(0.0, (t1/t0 - 1)/(math.log2(p1) - math.log2(p0))) if t0 > 0 else 0.0
     bytes_per_coarse = by_p[2]["broadcastBytes"]/coarse_cells if 2 in by_p else 60.0
     def messages(P):
         known = sorted(p for p in by_p if 1 < p <= P)
