@@ -363,7 +363,8 @@ void pmsh::reportSummary
         {"maxSkewness", &meshQuality::maxSkewness},
         {"minVolume", &meshQuality::minVolume},
         {"minDihedral", &meshQuality::minDihedral},
-        {"maxDihedral", &meshQuality::maxDihedral}
+        {"maxDihedral", &meshQuality::maxDihedral},
+        {"maxAspectRatio", &meshQuality::maxAspectRatio}
     };
     for (const auto& [name, m] : measures)
     {

@@ -226,6 +226,7 @@ pmsh::meshQualityReport pmsh::meshQualityOf
     const std::vector<double> volumeR = comm.allGather(minVolume);
     const std::vector<double> minDihedralR = comm.allGather(volume.minDihedral);
     const std::vector<double> maxDihedralR = comm.allGather(volume.maxDihedral);
+    const std::vector<double> aspectR = comm.allGather(volume.maxAspectRatio);
 
     meshQuality& all = report.overall;
     double allSumCos = 0, allCounted = 0, allMinCos = 1, allMinProcCos = 1;
@@ -242,6 +243,7 @@ pmsh::meshQualityReport pmsh::meshQualityOf
         q.minVolume = volumeR[r];
         q.minDihedral = minDihedralR[r];
         q.maxDihedral = maxDihedralR[r];
+        q.maxAspectRatio = aspectR[r];
         q.nSevereNonOrthogonal = std::int64_t(severeR[r]);
         report.perRank.push_back(q);
 
@@ -253,6 +255,7 @@ pmsh::meshQualityReport pmsh::meshQualityOf
         all.minVolume = std::min(all.minVolume, q.minVolume);
         all.minDihedral = std::min(all.minDihedral, q.minDihedral);
         all.maxDihedral = std::max(all.maxDihedral, q.maxDihedral);
+        all.maxAspectRatio = std::max(all.maxAspectRatio, q.maxAspectRatio);
         all.nSevereNonOrthogonal += q.nSevereNonOrthogonal;
     }
     all.maxNonOrthogonality = degreesOfCos(allMinCos);
@@ -283,7 +286,8 @@ void pmsh::logMeshQuality(const Communicator& comm, const meshQualityReport& qua
         << ", min volume " << q.minVolume << '\n'
         << std::fixed << std::setprecision(1)
         << "        tet dihedral angles min/max: " << q.minDihedral << " / "
-        << q.maxDihedral << " degrees\n";
+        << q.maxDihedral << " degrees, max aspect ratio " << q.maxAspectRatio
+        << '\n';
     if (comm.parallel())
     {
         std::vector<double> nonOrth, skew;

@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "VolumeMesher.H"
+#include "tetShape.H"
 #include "surfaceTopology.H"
 #include "netgenVolumeMesher.H"
 #include "hxtVolumeMesher.H"
@@ -194,6 +195,26 @@ void verifyVolumeMesh
                     << what << ": tet " << t << " is "
                     << (v6 < 0 ? "inverted" : "flat") << " (6 x volume " << v6
                     << "), points " << str(result.points[c[0]]) << ' '
+                    << str(result.points[c[1]]) << ' '
+                    << str(result.points[c[2]]) << ' '
+                    << str(result.points[c[3]]),
+                function
+            );
+        }
+        const double aspectRatio = tetAspectRatio
+        (
+            result.points[c[0]], result.points[c[1]],
+            result.points[c[2]], result.points[c[3]]
+        );
+        if (!(aspectRatio <= maxAcceptedAspectRatio))
+        {
+            throw FatalError
+            (
+                msg()
+                    << what << ": tet " << t << " is a sliver that checkMesh"
+                    << " would reject (aspect ratio " << aspectRatio << ", above "
+                    << maxAcceptedAspectRatio << "), points "
+                    << str(result.points[c[0]]) << ' '
                     << str(result.points[c[1]]) << ' '
                     << str(result.points[c[2]]) << ' '
                     << str(result.points[c[3]]),

@@ -1,6 +1,6 @@
 #include "partitionVolume.H"
 #include "childProcess.H"
-#include "tetQualityPass.H"
+#include "tetShape.H"
 #include "pmshError.H"
 
 #include <algorithm>
@@ -109,9 +109,10 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
             result.backend = at.mesher->name();
             result.attempts = int(a) + 1;
             result.nCells = label(result.mesh.tets.size());
-            const dihedralRange dihedral = tetDihedralRange(result.mesh);
-            result.minDihedral = dihedral.min;
-            result.maxDihedral = dihedral.max;
+            const tetShapeRange shape = tetShapeRangeOf(result.mesh);
+            result.minDihedral = shape.minDihedral;
+            result.maxDihedral = shape.maxDihedral;
+            result.maxAspectRatio = shape.maxAspectRatio;
             result.failures = failures;
             return result;
         }

@@ -110,9 +110,15 @@ double badness(const measure& m, bool nonOrthCounts)
 
 // Slivers (flat tets) can have faces of fair non-orthogonality and
 // skewness, yet checkMesh fails them (aspect ratio above 1000, or a volume
-// it finds negative): a tet whose volume is below 1/1000 of a regular
-// tet's on its longest edge is bad by that factor squared
-constexpr double sliverVolume = 1e-3;
+// it finds negative): a tet whose volume is below 1/20 of a regular tet's
+// on its longest edge is bad by that factor squared. The common one is a
+// crease sliver, two nearly coplanar surface triangles closed by an
+// interior edge. At 1/1000 those were left with dihedral angles of 0.2
+// degrees and aspect ratios near 400 (sphere, r = 4, 2 ranks); at 1/20
+// the smallest angle is 5.6 degrees and non-orthogonality gets better too;
+// at 1/10 the pass spends its steps on slivers and leaves worse faces
+// (bench/results/quality-slivers.md)
+constexpr double sliverVolume = 5e-2;
 
 inline double sqr(double x) { return x*x; }
 
@@ -893,44 +899,6 @@ pmsh::faceQuality pmsh::boundaryFaceQuality
 {
     const measure m = boundaryMeasure(a, b, c, d);
     return {degrees(m.tan2), m.skew};
-}
-
-
-pmsh::dihedralRange pmsh::tetDihedralRange(const TetMesh& mesh)
-{
-    if (mesh.tets.empty())
-    {
-        return {};
-    }
-    // Between the outward normals of two faces the angle is 180 degrees
-    // minus the dihedral angle at their common edge: track the extreme
-    // cosines of the normals' angles, one acos each at the end
-    double minCos = 1, maxCos = -1;
-    for (const tetCell& c : mesh.tets)
-    {
-        std::array<vector, 4> n;
-        for (int k = 0; k < 4; ++k)
-        {
-            const triFace f = tetFace(c, k);
-            const point& a = mesh.points[f[0]];
-            n[k] = cross(mesh.points[f[1]] - a, mesh.points[f[2]] - a);
-            const double m = std::sqrt(magSqr(n[k]));
-            n[k] = (m > 0 ? 1/m : 0)*n[k];
-        }
-        for (int i = 0; i < 4; ++i)
-        {
-            for (int j = i + 1; j < 4; ++j)
-            {
-                const double cosine = dot(n[i], n[j]);
-                minCos = std::min(minCos, cosine);
-                maxCos = std::max(maxCos, cosine);
-            }
-        }
-    }
-    const auto deg = [](double c) { return std::acos(std::min(1.0, std::max(-1.0, c)))*180/M_PI; };
-    // Dihedral = 180 - angle(n_i, n_j): the largest cosine gives the
-    // largest dihedral angle
-    return {180 - deg(minCos), 180 - deg(maxCos)};
 }
 
 

@@ -130,8 +130,9 @@ class parallelRun(ParallelCaseTest):
         """volumeMesher hxt with optimisationSteps (the quality pass after
         HXT, tetQualityPass.H): checkMesh -parallel's max non-orthogonality
         and max skewness no worse than Netgen's on the same case and ranks
-        (HXT alone: about 80 degrees and 1.1; Netgen: about 70 and 0.75);
-        and the log's summary.json reports what checkMesh says."""
+        (HXT alone: about 80 degrees and 1.1; Netgen: about 70 and 0.75),
+        no slivers; and the log's summary.json reports what checkMesh
+        says."""
         quality = {}
         for backend in ("netgen", "hxt"):
             c, _ = self.mesh_parallel("sphere", 2, 2, volumeMesher=backend,
@@ -139,6 +140,7 @@ class parallelRun(ParallelCaseTest):
             text = c.check_mesh(np=2)
             non_orth = re.search(r"non-orthogonality Max:\s*([\d.]+)\s+average:\s*([\d.]+)", text)
             skew = re.search(r"Max skewness =\s*([\d.]+)", text)
+            aspect = re.search(r"Max aspect ratio =\s*([\d.]+)", text)
             quality[backend] = (float(non_orth.group(1)), float(skew.group(1)))
             with open(os.path.join(c.dir, "postProcessing/pmshFoam/summary.json")) as f:
                 s = json.load(f)
@@ -153,6 +155,12 @@ class parallelRun(ParallelCaseTest):
             self.assertLess(0, q["minDihedral"])
             self.assertLess(q["minDihedral"], q["maxDihedral"])
             self.assertLess(q["maxDihedral"], 180)
+            # From the points before they were written (ascii, 8 digits)
+            self.assertAlmostEqual(q["maxAspectRatio"] / float(aspect.group(1)), 1, places=3)
+            if backend == "hxt":
+                # No crease slivers left (at the pass's former threshold:
+                # 0.8 degrees, aspect ratio 32)
+                self.assertGreater(q["minDihedral"], 3, q)
         (n_non_orth, n_skew), (h_non_orth, h_skew) = quality["netgen"], quality["hxt"]
         self.assertLessEqual(h_non_orth, n_non_orth, quality)
         self.assertLessEqual(h_skew, n_skew, quality)

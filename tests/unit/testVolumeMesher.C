@@ -267,3 +267,27 @@ TEST(VolumeMesher, meshRejectsAResultThatBreaksTheContract)
     }
     EXPECT_FATAL(meshGiven(TetMesh()), "has no tets");
 }
+
+
+TEST(VolumeMesher, meshRejectsASliverThatCheckMeshWouldFail)
+{
+    // One positive tet, 1e-5 high over a unit triangle: its volume is
+    // positive, its aspect ratio (checkMesh's) far above 1000
+    TetMesh sliver;
+    sliver.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, 1e-5}};
+    sliver.tets = {{0, 1, 2, 3}};
+    std::vector<triFace> surface;
+    for (int f = 0; f < 4; ++f)
+    {
+        surface.push_back(tetFace(sliver.tets[0], f));
+    }
+    EXPECT_FATAL
+    (
+        givenMeshMesher(sliver).mesh(sliver.points, surface, {}),
+        "is a sliver that checkMesh would reject"
+    );
+
+    // The same tet 0.1 high is a fair cell
+    sliver.points[3][2] = 0.1;
+    EXPECT_NO_THROW(givenMeshMesher(sliver).mesh(sliver.points, surface, {}));
+}
