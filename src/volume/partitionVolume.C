@@ -67,9 +67,11 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
     const std::string& advice
 )
 {
-    // The attempts, in order: as asked; single-threaded; without
-    // optimisation (Netgen's optimiser is where most of its rare crashes
-    // and hangs live); with a tighter interior size; then the other meshers
+    // The attempts, in order: as asked; single-threaded; with the
+    // optimiser changed; with a tighter interior size; then the other
+    // meshers. Netgen's optimiser is where most of its rare crashes and
+    // hangs live, so its retry goes without it; HXT's quality pass is what
+    // removes the slivers the contract refuses, so its retry has more steps
     const VolumeMesher* first = meshers.at(0).get();
     std::vector<attempt> attempts{{first, parameters, ""}};
     volumeMeshParameters p = parameters;
@@ -81,11 +83,21 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
     }
     if (p.optimisationSteps > 0)
     {
-        p.optimisationSteps = 0;
-        attempts.push_back({first, p, "optimisationSteps 0"});
+        p.optimisationSteps = first->optimiserMayFail() ? 0 : 2*p.optimisationSteps;
+        attempts.push_back
+        (
+            {first, p, "optimisationSteps " + std::to_string(p.optimisationSteps)}
+        );
     }
     p.grading = std::min(p.grading, 0.2);
-    attempts.push_back({first, p, "optimisationSteps 0, grading <= 0.2"});
+    attempts.push_back
+    (
+        {
+            first, p,
+            "optimisationSteps " + std::to_string(p.optimisationSteps)
+          + ", grading <= 0.2"
+        }
+    );
     for (std::size_t m = 1; m < meshers.size(); ++m)
     {
         attempts.push_back

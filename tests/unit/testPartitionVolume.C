@@ -83,6 +83,39 @@ TEST(partitionVolume, failingEverywhereWritesTheSurfaceAndNamesPartitionAndFile)
     EXPECT_EQ(facets, tris.size());
 }
 
+TEST(partitionVolume, retriesWithoutARiskyOptimiserAndWithMoreOfACuringOne)
+{
+    // Netgen's optimiser is where its crashes live: its retry goes without
+    // it. HXT's quality pass removes the slivers the contract refuses: its
+    // retry gets twice the steps.
+    struct curingOptimiserMesher : failingMesher
+    {
+        bool optimiserMayFail() const override { return false; }
+    };
+    const closedSurface sphere = icosphere(1);
+    volumeMeshParameters p = partitionNamed("partition 1");
+    p.optimisationSteps = 3;
+    const auto failuresOf = [&](std::unique_ptr<VolumeMesher> m)
+    {
+        return errorOf([&]
+        {
+            meshVolumeWithFallbacks
+            (
+                meshers(std::move(m)), sphere.points, sphere.triangles, p,
+                tempFile("failedPartition1.stl"), ""
+            );
+        });
+    };
+    const std::string risky = failuresOf(std::make_unique<failingMesher>());
+    EXPECT_HAS(risky, "attempt 2 (failing; optimisationSteps 0)");
+    EXPECT_HAS(risky, "attempt 3 (failing; optimisationSteps 0, grading <= 0.2)");
+    const std::string curing = failuresOf(std::make_unique<curingOptimiserMesher>());
+    EXPECT_HAS(curing, "attempt 2 (failing; optimisationSteps 6)");
+    EXPECT_HAS(curing, "attempt 3 (failing; optimisationSteps 6, grading <= 0.2)");
+    EXPECT_FALSE(VolumeMesher::New("hxt")->optimiserMayFail());
+    EXPECT_TRUE(VolumeMesher::New("netgen")->optimiserMayFail());
+}
+
 TEST(partitionVolume, aFailingMesherFallsBackToTheNextOne)
 {
     const closedSurface sphere = icosphere(2);
