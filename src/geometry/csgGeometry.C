@@ -139,15 +139,23 @@ pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
     mp.surfaceOnly = surfaceOnly;
     ng::volumeMesh m = model_->generateMesh(mp);
 
-    // Patch name of each bc number: Netgen's bcname, else patch<bc>
-    // ("default" is Netgen's name for "none given")
-    std::map<label, std::string> bcPatchName;
-    for (const auto& bn : m.bcNames)
+    // Patch name of each bc number: Netgen's bcname, else the name of the
+    // top-level solid it bounds, so that the surfaces of one solid without
+    // a bcname share one patch ("default" is Netgen's name for "none
+    // given"; patch<bc> only if the solid has no name either)
+    std::map<label, label> bcDomain;
+    for (const ng::boundaryTriangle& b : m.boundary)
     {
-        bcPatchName[bn.first] =
-            (bn.second.empty() || bn.second == "default")
-          ? "patch" + std::to_string(bn.first)
-          : bn.second;
+        bcDomain.emplace(b.bc, b.domain);
+    }
+    std::map<label, std::string> bcPatchName;
+    for (const auto& [bc, name] : m.bcNames)
+    {
+        const std::string& solid = m.domainNames[bcDomain[bc]];
+        bcPatchName[bc] =
+            !name.empty() && name != "default" ? name
+          : !solid.empty() ? solid
+          : "patch" + std::to_string(bc);
     }
 
     // One patch per name, ordered by the smallest bc number with that name

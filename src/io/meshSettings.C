@@ -345,14 +345,48 @@ std::vector<std::string> meshSettingsPatchTypes()
 }
 
 
-std::string meshSettings::patchType(const std::string& patchName) const
+meshSettings::patchTypeChoice meshSettings::choosePatchType
+(
+    const std::string& patchName
+) const
 {
     // REGEX search: the literal name first, then the patterns, last first
     const entry* e = patches.findEntry(patchName, keyType::REGEX);
-    return
-        e && e->isDict()
-      ? e->dict().getOrDefault<Foam::word>("type", "wall")
-      : "wall";
+    if (e && e->isDict() && e->dict().found("type"))
+    {
+        return
+        {
+            e->dict().get<Foam::word>("type"),
+            "patches entry \"" + std::string(e->keyword()) + "\""
+        };
+    }
+
+    // A CFD user names open boundaries and symmetry planes so; a wall they
+    // must name in pmshDict only if it is called e.g. "inletPipeWall"
+    std::string lower(patchName);
+    std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+    const auto has = [&](const char* word) { return lower.find(word) != std::string::npos; };
+    if (has("wall"))
+    {
+        return {"wall", "its name"};
+    }
+    for
+    (
+        const char* open
+      : {"inlet", "outlet", "inflow", "outflow", "farfield", "far_field",
+         "freestream", "atmosphere", "ambient", "opening"}
+    )
+    {
+        if (has(open))
+        {
+            return {"patch", "its name (\"" + std::string(open) + "\": flow goes through)"};
+        }
+    }
+    if (has("symm"))
+    {
+        return {"symmetry", "its name"};
+    }
+    return {"wall", "default"};
 }
 
 

@@ -45,12 +45,15 @@
 #include "tetFaceMatching.H"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
 #include <fstream>
 #include <iostream>
 #include <mutex>
 #include <sstream>
+#include <thread>
 
 // Netgen's C++ headers. The build defines PARALLEL: netgen::Mesh has a
 // member only under PARALLEL and a mismatch silently corrupts memory.
@@ -131,6 +134,12 @@ public:
     std::string output() const
     {
         return captured_.str();
+    }
+
+    //- Where std::cout went before the session captured it (the log).
+    std::streambuf* console() const
+    {
+        return cout_;
     }
 
     //- The last nLines non-empty lines Netgen printed, indented, for an
@@ -414,12 +423,74 @@ pmsh::ng::volumeMesh convertMesh(const netgen::Mesh& mesh, const std::string& wh
         }
         b.bc = fd.BCProperty();
         b.surface = fd.SurfNr();
+        b.domain = inside ? fd.DomainIn() : fd.DomainOut();
         m.boundary.push_back(b);
         m.bcNames.emplace(b.bc, fd.GetBCName());
     }
 
     return m;
 }
+
+
+//- While Netgen works on a coarse mesh, which can take minutes (a
+//  116k-triangle STL took 5 before failing), a log line every `every`
+//  seconds with the task it is on and how far it is: Netgen publishes both
+//  in netgen::multithread for its GUI to poll from another thread, which
+//  is what this does. Written to the console the session took cout from.
+class progressReport
+{
+    std::ostream out_;
+    const std::chrono::steady_clock::time_point start_;
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    bool done_ = false;
+    std::thread thread_;
+
+    void run(std::chrono::seconds every)
+    {
+        std::unique_lock<std::mutex> lock(mutex_);
+        while (!wake_.wait_for(lock, every, [this] { return done_; }))
+        {
+            // Read once: Netgen changes them as it goes
+            const char* task = netgen::multithread.task;
+            const double percent = netgen::multithread.percent;
+            const auto seconds = std::chrono::duration_cast<std::chrono::seconds>
+            (
+                std::chrono::steady_clock::now() - start_
+            ).count();
+            out_
+                << "    Netgen, " << seconds << " s: "
+                << (task && *task ? task : "working");
+            if (percent > 0 && percent <= 100)
+            {
+                out_ << ", " << int(percent) << "%";
+            }
+            out_ << std::endl;
+        }
+    }
+
+public:
+
+    progressReport(std::streambuf* console, std::chrono::seconds every)
+    :
+        out_(console),
+        start_(std::chrono::steady_clock::now()),
+        thread_([this, every] { run(every); })
+    {}
+
+    ~progressReport()
+    {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            done_ = true;
+        }
+        wake_.notify_one();
+        thread_.join();
+    }
+};
+
+//- How often a coarse mesh in the making is reported.
+constexpr std::chrono::seconds coarseProgressInterval{15};
 
 
 //- Delete an nglib mesh however the scope is left.
@@ -743,6 +814,7 @@ pmsh::ng::volumeMesh pmsh::ng::csgModel::generateMesh
     int rc = 0;
     try
     {
+        const progressReport progress(session.console(), coarseProgressInterval);
         rc = impl_->geometry->GenerateMesh(mesh, mp);
     }
     catch (const std::exception& e)
@@ -781,6 +853,20 @@ pmsh::ng::volumeMesh pmsh::ng::csgModel::generateMesh
     {
         makeTetsPositive(m, what);
         checkBoundary(m, what);
+    }
+
+    // A CSG domain is a top-level object plus one (Netgen's face
+    // descriptors number them so: csg/genmesh.cpp compares DomainIn() with
+    // tlonr + 1)
+    for (const boundaryTriangle& b : m.boundary)
+    {
+        if (!m.domainNames.count(b.domain))
+        {
+            const netgen::TopLevelObject* tlo =
+                impl_->geometry->GetTopLevelObject(int(b.domain) - 1);
+            const netgen::Solid* solid = tlo ? tlo->GetSolid() : nullptr;
+            m.domainNames[b.domain] = solid ? solid->Name() : "";
+        }
     }
 
     return m;
@@ -952,6 +1038,7 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
     const char* step = "finding edges";
     try
     {
+        const progressReport progress(session.console(), coarseProgressInterval);
         nglib::Ng_STL_MakeEdges(geo, mesh, &mp);
 
         step = "meshing the surface";

@@ -43,7 +43,9 @@ void pmsh::setPatchTypes(CoarseMesh& coarse, const meshSettings& settings)
 {
     for (meshPatch& p : coarse.patches)
     {
-        p.type = settings.patchType(p.name);
+        const meshSettings::patchTypeChoice choice = settings.choosePatchType(p.name);
+        p.type = choice.type;
+        p.typeOrigin = choice.origin;
     }
 }
 
@@ -147,7 +149,15 @@ pmsh::globalLabel pmsh::logVolumeMeshing
 
 pmsh::meshSizes pmsh::meshSizesOf(const tetPolyMesh& mesh)
 {
-    return {double(mesh.nFaces()), double(mesh.points.size())};
+    meshSizes sizes{double(mesh.nFaces()), double(mesh.points.size()), {}};
+    for (const meshPatch& p : mesh.patches)
+    {
+        if (!p.isProcessor())
+        {
+            sizes.patches.push_back(p);
+        }
+    }
+    return sizes;
 }
 
 
@@ -175,6 +185,22 @@ void pmsh::logWritten
     else
     {
         Info() << "    faces: " << faces.max << ", points: " << points.max << '\n';
+    }
+
+    // Every physical patch (every rank has all of them, some empty)
+    std::size_t width = 4;
+    for (const meshPatch& p : sizes.patches)
+    {
+        width = std::max(width, p.name.size());
+    }
+    Info() << "    patches (faces, type and why):\n";
+    for (const meshPatch& p : sizes.patches)
+    {
+        const std::int64_t nFaces = comm.sum(std::int64_t(p.size));
+        Info()
+            << "        " << std::left << std::setw(int(width)) << p.name << ' '
+            << std::right << std::setw(10) << nFaces << "  " << std::left
+            << std::setw(13) << p.type << std::right << ' ' << p.typeOrigin << '\n';
     }
     Info() << std::defaultfloat;
 }

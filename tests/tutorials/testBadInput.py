@@ -645,7 +645,7 @@ class badInputParallel(BadInputTest, cases):
             f.write("algebraic3d\n"
                     "solid tet = plane (0, 0, 0; 0, 0, -1) and plane (0, 0, 0; 0, -1, 0)\n"
                     "    and plane (0, 0, 0; -1, 0, 0) and plane (1, 0, 0; 1, 1, 1)"
-                    " -bcname=wall;\n"
+                    " -bcname=walls;\n"
                     "tlo tet;\n")
         self.expect_fatal(c, ["Cannot split a coarse mesh of 1 cells into 3 parts",
                               "maxCellSize"], np=3)
@@ -672,7 +672,7 @@ class badInputParallel(BadInputTest, cases):
             f.write(text.replace("type            noSlip;",
                                  "type            fixedValue;\n"
                                  "        value           nonuniform List<vector> 1((1 0 0));"))
-        self.expect_fatal(c, ["Entry 'value' of boundaryField/wall is nonuniform",
+        self.expect_fatal(c, ["Entry 'value' of boundaryField/walls is nonuniform",
                               "'value uniform <value>;'",
                               "file: %s at line %d." % (field, line_of(field, "value"))],
                           np=2)
@@ -684,9 +684,9 @@ class badInputParallel(BadInputTest, cases):
         with open(field) as f:
             text = f.read()
         with open(field, "w") as f:
-            f.write(re.sub(r"^    wall$", "    walls", text, flags=re.M))
-        self.expect_fatal(c, ["Field U has no boundary condition for patch 'wall' (type wall)",
-                              "Add an entry 'wall { type ...; }'",
+            f.write(re.sub(r"^    walls$", "    sides", text, flags=re.M))
+        self.expect_fatal(c, ["Field U has no boundary condition for patch 'walls' (type wall)",
+                              "Add an entry 'walls { type ...; }'",
                               "file: %s\n" % field], np=2)
 
     # -- the decomposition --------------------------------------------------

@@ -106,11 +106,11 @@ class shaft(CaseTest):
     def test_meshOkAtEachLevelWithNamedPatches(self):
         meshes = self.mesh_levels("shaft", [0, 1, 2])
         names = [n for n, _ in meshes[0][0].polymesh().boundary()]
-        for expected in ("inlet", "outlet", "wall"):
+        for expected in ("inlet", "outlet", "walls"):
             self.assertIn(expected, names)
         types = dict((n, e["type"]) for n, e in meshes[0][0].polymesh().boundary())
         self.assertEqual(types["inlet"], "patch")
-        self.assertEqual(types["wall"], "wall")
+        self.assertEqual(types["walls"], "wall")
 
 
 class sphereSTL(CaseTest):

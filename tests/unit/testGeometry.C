@@ -431,7 +431,7 @@ TEST(csgGeometry, shaftPatchesAndEdgeProjection)
 }
 
 
-TEST(csgGeometry, bcNumbersWithoutNames)
+TEST(csgGeometry, surfacesWithoutBcNamesTakeTheirSolidsName)
 {
     const tempDir dir("geometry");
     const std::string f = dir.file
@@ -444,7 +444,7 @@ TEST(csgGeometry, bcNumbersWithoutNames)
     auto g = Geometry::New(f);
     const CoarseMesh m = g->coarseMesh({0.5, 0.3});
     checkCoarseMesh(m);
-    EXPECT_EQ(patchNames(m), std::vector<std::string>{"patch3"});
+    EXPECT_EQ(patchNames(m), std::vector<std::string>{"cube"});
     std::set<label> surfaces;
     for (const auto& b : m.boundary) surfaces.insert(b.surface);
     EXPECT_EQ(surfaces.size(), 6u);
@@ -856,4 +856,26 @@ TEST(stlGeometry, projectionIsAsCloseToTheTrueSphereAsTheFacets)
         EXPECT_GE(radius(q), 1 - facetDepth - 1e-6) << str(p);
         EXPECT_LT(std::sqrt(magSqr(q - (1/radius(p))*p)), longestEdge) << str(p);
     }
+}
+
+
+TEST(csgGeometry, aBodyInABoxKeepsItsBcNameAndTheRestTakesTheSolidsName)
+{
+    // The surfaces without a bcname (the six box faces, each its own bc
+    // number) share one patch named after the top-level solid
+    const tempDir dir("geometry");
+    const std::string f = dir.file
+    (
+        "bodyInBox.geo",
+        "algebraic3d\n"
+        "solid box = orthobrick(-2, -2, -2; 2, 2, 2);\n"
+        "solid body = sphere(0, 0, 0; 0.5) -bcname=ball;\n"
+        "solid fluid = box and not body;\n"
+        "tlo fluid;\n"
+    );
+    const CoarseMesh m = Geometry::New(f)->coarseMesh({1.0, 0.3});
+    checkCoarseMesh(m);
+    std::vector<std::string> names = patchNames(m);
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"ball", "fluid"}));
 }

@@ -395,12 +395,35 @@ TEST_F(meshSettingsTest, patchTypeUsesExactNameThenLastMatchingRegex)
     EXPECT_EQ(s.patchType("inside"), "symmetry");
     EXPECT_EQ(s.patchType("top"), "symmetryPlane");
     // A regex matches the whole name
-    EXPECT_EQ(read(minimal() + "patches { \"in\" { type patch; } }\n").patchType("inlet"), "wall");
+    EXPECT_EQ(read(minimal() + "patches { \"in\" { type patch; } }\n").patchType("inside"), "wall");
 
     // A copy (as the application keeps it) still matches
     const meshSettings copy = s;
     EXPECT_EQ(copy.patchType("inside"), "symmetry");
     EXPECT_EQ(copy.patchType("inlet"), "patch");
+
+    // Where each type came from, for the log
+    EXPECT_EQ(s.choosePatchType("inlet").origin, "patches entry \"inlet\"");
+    EXPECT_EQ(s.choosePatchType("outlet").origin, "patches entry \"(inlet|outlet)\"");
+}
+
+TEST_F(meshSettingsTest, patchTypesDefaultFromNamesACFDUserWouldGive)
+{
+    const meshSettings s = read(minimal());
+    for (const char* open : {"inlet", "Outlet", "velocityInlet2", "inflow", "outflow",
+                             "farfield", "far_field", "freestream", "atmosphere"})
+    {
+        EXPECT_EQ(s.patchType(open), "patch") << open;
+        EXPECT_NE(s.choosePatchType(open).origin.find("its name"), std::string::npos) << open;
+    }
+    EXPECT_EQ(s.patchType("symmetry"), "symmetry");
+    EXPECT_EQ(s.patchType("frontSymm"), "symmetry");
+    // A wall named after the opening it lines stays a wall
+    EXPECT_EQ(s.patchType("inletPipeWall"), "wall");
+    EXPECT_EQ(s.patchType("body"), "wall");
+    EXPECT_EQ(s.choosePatchType("body").origin, "default");
+    // pmshDict overrides a name
+    EXPECT_EQ(read(minimal() + "patches { inlet { type wall; } }\n").patchType("inlet"), "wall");
 }
 
 

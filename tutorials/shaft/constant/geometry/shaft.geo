@@ -8,10 +8,10 @@ algebraic3d
 
 solid inletPlane     = plane (0, 0, 0; -1, 0, 0) -bcname=inlet;
 solid outletPlane    = plane (4, 0, 0; 1, 0, 0) -bcname=outlet;
-solid journal        = cylinder (-1, 0, 0; 5, 0, 0; 0.5) -bcname=wall;
-solid shoulder       = cylinder (-1, 0, 0; 5, 0, 0; 0.8) -bcname=wall;
-solid shoulderStart  = plane (1.5, 0, 0; -1, 0, 0) -bcname=wall;
-solid shoulderEnd    = plane (2.5, 0, 0; 1, 0, 0) -bcname=wall;
+solid journal        = cylinder (-1, 0, 0; 5, 0, 0; 0.5) -bcname=walls;
+solid shoulder       = cylinder (-1, 0, 0; 5, 0, 0; 0.8) -bcname=walls;
+solid shoulderStart  = plane (1.5, 0, 0; -1, 0, 0) -bcname=walls;
+solid shoulderEnd    = plane (2.5, 0, 0; 1, 0, 0) -bcname=walls;
 
 solid shaft = (journal and inletPlane and outletPlane)
            or (shoulder and shoulderStart and shoulderEnd);
