@@ -3,6 +3,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "csgGeometry.H"
+#include "Info.H"
 #include "netgenInterface.H"
 #include "pmshError.H"
 
@@ -138,6 +139,23 @@ pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
     mp.grading = parameters.grading;
     mp.surfaceOnly = surfaceOnly;
     ng::volumeMesh m = model_->generateMesh(mp);
+
+    // Several top-level solids are one region for now (issue 14): say so,
+    // since the surfaces between them are dropped (convertMesh keeps only
+    // faces with the domain on one side)
+    if (m.domainNames.size() > 1)
+    {
+        Info() << "    Warning: " << m.domainNames.size() << " top-level solids (";
+        std::string sep;
+        for (const auto& dn : m.domainNames)
+        {
+            Info() << sep << (dn.second.empty() ? "unnamed" : dn.second);
+            sep = ", ";
+        }
+        Info()
+            << ") are meshed as one region: the surfaces between them are"
+            << " not kept and there are no cellZones\n";
+    }
 
     // Patch name of each bc number: Netgen's bcname, else the name of the
     // top-level solid it bounds, so that the surfaces of one solid without

@@ -707,6 +707,28 @@ pmsh::ng::csgModel::csgModel(const std::string& fileName)
         );
     }
 
+    // Periodic pairs ('identify periodic') are not kept through refinement
+    // and partitioning yet, and Netgen's own pairing of the coarse faces
+    // would be lost: a mesh whose two sides do not match cannot get cyclic
+    // patches, so stop instead of ignoring them
+    for (int i = 0; i < g->GetNIdentifications(); ++i)
+    {
+        if (dynamic_cast<const netgen::PeriodicIdentification*>(g->identifications[i]))
+        {
+            throw FatalError
+            (
+                msg()
+                    << "CSG geometry file \"" << fileName << "\" pairs"
+                    << " surfaces with 'identify periodic', which pmshFoam"
+                    << " cannot honour yet (the two sides would not match,"
+                    << " so no cyclic patches could be made). Remove the"
+                    << " identify statement to mesh the two sides as"
+                    << " ordinary patches",
+                function
+            );
+        }
+    }
+
     // What CSGeometryRegister::Load does after parsing (not in the headers)
     g->FindIdenticSurfaces(1e-8*g->MaxSize());
 

@@ -879,3 +879,24 @@ TEST(csgGeometry, aBodyInABoxKeepsItsBcNameAndTheRestTakesTheSolidsName)
     std::sort(names.begin(), names.end());
     EXPECT_EQ(names, (std::vector<std::string>{"ball", "fluid"}));
 }
+
+
+TEST(csgGeometry, periodicPairsStopInsteadOfBeingIgnored)
+{
+    // Netgen's periodic cube: the two sides would get different
+    // triangulations, so no cyclic patches could be made from them
+    const tempDir dir("geometry");
+    const std::string f = dir.file
+    (
+        "periodic.geo",
+        "algebraic3d\n"
+        "solid p1 = plane(0, 0, 0; 0, 0, -1);\n"
+        "solid p2 = plane(1, 1, 1; 0, 0, 1);\n"
+        "solid cube = plane(0, 0, 0; 0, -1, 0) and plane(0, 0, 0; -1, 0, 0)\n"
+        "    and plane(1, 1, 1; 0, 1, 0) and plane(1, 1, 1; 1, 0, 0)\n"
+        "    and p1 and p2;\n"
+        "tlo cube;\n"
+        "identify periodic p1 p2;\n"
+    );
+    EXPECT_FATAL(Geometry::New(f), "cannot honour yet");
+}
