@@ -137,6 +137,8 @@ pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
     mp.maxh = parameters.maxCellSize;
     mp.grading = parameters.grading;
     mp.surfaceOnly = surfaceOnly;
+    mp.regions = parameters.regions;
+    mp.sizePoints = parameters.sizePoints;
     ng::volumeMesh m = model_->generateMesh(mp);
 
     // Patch name of each bc number: Netgen's bcname, else patch<bc>
