@@ -265,7 +265,8 @@ int main(int argc, char *argv[])
             {
                 fineWeights = pmsh::fineCellWeights
                 (
-                    coarse, settings.maxCellSize, settings.refinementLevels
+                    coarse, settings.maxCellSize, settings.refinementLevels,
+                    settings.refinementRegions
                 );
             }
         });

@@ -706,9 +706,13 @@ meshSettings readMeshSettings
         " (threads per rank; 1 with one rank per core)"
     );
 
+    // Default 3: a ball of radius 0.5 at maxCellSize 1 then gets 120
+    // coarse faces from its STL (mean edge 0.24), as from CSG, where
+    // Netgen always sizes by curvature (128, 0.23); with 0 or 2 it gets 70
+    // (0.31), whatever the global size
     s.curvatureRefinement = bounded
     (
-        dict, "curvatureRefinement", 2, 0, 100, false,
+        dict, "curvatureRefinement", 3, 0, 100, false,
         "Valid values are numbers 0 <= curvatureRefinement <= 100: coarse"
         " cells per radian of STL surface curvature (0 = off)"
     );

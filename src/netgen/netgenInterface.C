@@ -37,7 +37,15 @@
     volume optimisation then removes no cells (1.2-1.8x as many; which
     surfaces take that path depends on the point order: 1 of 7 partition
     surfaces at r = 3 and 3 of 96 at r = 2 in the tutorials): the flags are
-    cleared before it.
+    cleared before it;
+  - local sizes (restrictLocalSizes): the local size tree exists only
+    inside the meshing calls. CSGGenerateMesh creates it in its analysis
+    step and accepts only points (meshsize_points) before the edges: it is
+    run up to the analysis, restricted, and resumed from the edges.
+    Ng_STL_MakeEdges creates it (always with grading 0.3) before lines and
+    surface are meshed in Ng_STL_GenerateSurfaceMesh: it is restricted in
+    between. RestrictLocalH ignores points outside the tree's box;
+  - STL curvature sizing (stlparam.resthsurfcurvenable) is off by default.
 \*---------------------------------------------------------------------------*/
 
 #include "netgenInterface.H"

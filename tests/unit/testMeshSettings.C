@@ -152,7 +152,7 @@ TEST_F(meshSettingsTest, optionalEntriesHaveTheirDefaults)
     EXPECT_EQ(s.patches.size(), 0);
     EXPECT_TRUE(s.refinementRegions.empty());
     EXPECT_FALSE(s.hasPatchSizes());
-    EXPECT_DOUBLE_EQ(s.curvatureRefinement, 2);
+    EXPECT_DOUBLE_EQ(s.curvatureRefinement, 3);
 
     // The volume mesher fills the coarse surface too, unless told
     EXPECT_EQ(read(minimal() + "volumeMesher hxt;\n").coarseMesher, "hxt");
