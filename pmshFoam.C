@@ -255,6 +255,7 @@ int main(int argc, char *argv[])
         );
         pmsh::setPatchTypes(coarse, settings);
         pmsh::logCoarseMesh(coarse);
+        pmsh::logLocalSizes(coarse, settings);
         // Expected fine cells of every coarse cell (the master's): the
         // partition balances them, the memory estimate sums them
         std::vector<double> fineWeights;
@@ -264,7 +265,8 @@ int main(int argc, char *argv[])
             {
                 fineWeights = pmsh::fineCellWeights
                 (
-                    coarse, settings.maxCellSize, settings.refinementLevels
+                    coarse, settings.maxCellSize, settings.refinementLevels,
+                    settings.refinementRegions
                 );
             }
         });

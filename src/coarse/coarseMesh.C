@@ -80,6 +80,7 @@ CoarseMesh meshOnMaster(const Geometry& geometry, const coarseMeshParameters& pa
     p.grading = parameters.grading;
     p.threads = int(std::max(1u, std::thread::hardware_concurrency()));
     p.what = "the coarse surface";
+    p.regions = parameters.regions;
 
     const wholeMachineAffinity everyCore;
     partitionVolumeResult volume = meshVolumeWithFallbacks

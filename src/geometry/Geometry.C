@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 // * * * * * * * * * * * * * * * * Selectors  * * * * * * * * * * * * * * * //
 
@@ -46,6 +47,55 @@ std::unique_ptr<pmsh::Geometry> pmsh::Geometry::New(const std::string& fileName)
             << "\n    .stl    STL, ascii or binary (case-insensitive)",
         "pmsh::Geometry::New"
     );
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+pmsh::CoarseMesh pmsh::Geometry::localSizedMesh
+(
+    const coarseMeshParameters& parameters,
+    bool surfaceOnly
+) const
+{
+    if (!parameters.patchMaxCellSize)
+    {
+        return netgenMesh(parameters, surfaceOnly);
+    }
+
+    // The first surface mesh needs no patch sizes, only the patches
+    coarseMeshParameters first = parameters;
+    first.patchMaxCellSize = nullptr;
+    first.sizePoints.clear();
+    const CoarseMesh surface = netgenMesh(first, true);
+
+    std::vector<double> patchSize(surface.patches.size());
+    for (std::size_t p = 0; p < patchSize.size(); ++p)
+    {
+        patchSize[p] = parameters.patchMaxCellSize(surface.patches[p].name);
+    }
+
+    coarseMeshParameters sized = parameters;
+    for (const coarseBoundaryFace& f : surface.boundary)
+    {
+        const double h = patchSize[f.patch];
+        if (!(h > 0 && h < parameters.maxCellSize))
+        {
+            continue;
+        }
+        // Netgen's triangles are chords of curved surfaces: their
+        // subdivision is projected back onto the face's surface
+        sampleTriangle
+        (
+            surface.points[f.v[0]], surface.points[f.v[1]],
+            surface.points[f.v[2]], h,
+            [&](const point& x)
+            {
+                sized.sizePoints.push_back({projectToSurface(x, f.surface), h});
+            }
+        );
+    }
+    return netgenMesh(sized, surfaceOnly);
 }
 
 

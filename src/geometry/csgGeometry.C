@@ -138,6 +138,8 @@ pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
     mp.maxh = parameters.maxCellSize;
     mp.grading = parameters.grading;
     mp.surfaceOnly = surfaceOnly;
+    mp.regions = parameters.regions;
+    mp.sizePoints = parameters.sizePoints;
     ng::volumeMesh m = model_->generateMesh(mp);
 
     // Several top-level solids are one region for now (issue 14): say so,

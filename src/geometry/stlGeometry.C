@@ -652,6 +652,9 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
     mp.maxh = parameters.maxCellSize;
     mp.grading = parameters.grading;
     mp.surfaceOnly = surfaceOnly;
+    mp.regions = parameters.regions;
+    mp.sizePoints = parameters.sizePoints;
+    mp.curvatureRefinement = parameters.curvatureRefinement;
     ng::volumeMesh m = ng::stlVolumeMesh
     (
         d.surface.points,

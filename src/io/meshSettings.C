@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <limits>
 #include <filesystem>
 #include <fstream>
@@ -268,6 +269,236 @@ std::string readGeometry(const dictionary& d, const std::string& caseDir)
 }
 
 
+//- A local maxCellSize in sub-dictionary sub (of entry owner): optional
+//  for a patch (0 when absent), required for a region.
+double localSize
+(
+    const dictionary& d,
+    const dictionary& sub,
+    const std::string& owner,
+    bool required = false
+)
+{
+    const std::string valid =
+        "maxCellSize of " + owner + " must be a number > 0: the largest"
+        " coarse cell size there, in the units of the geometry (a size"
+        " larger than the global maxCellSize does not refine)";
+    const entry* e = sub.findEntry("maxCellSize", keyType::LITERAL);
+    if (!e)
+    {
+        if (required)
+        {
+            FatalIOErrorInFunction(sub)
+                << "Entry 'maxCellSize' not found in " << owner.c_str()
+                << '\n' << valid.c_str() << Foam::exit(Foam::FatalIOError);
+        }
+        return 0;
+    }
+    return bounded
+    (
+        sub, "maxCellSize", 0, std::numeric_limits<double>::min(),
+        std::numeric_limits<double>::max(), false, valid
+    );
+}
+
+
+//- A required point entry "(x y z)" of a region.
+pmsh::point readPoint
+(
+    const dictionary& region,
+    const char* key,
+    const std::string& owner
+)
+{
+    const std::string valid =
+        "Entry '" + std::string(key) + "' of " + owner
+      + " must be a point (x y z), e.g. " + key + " (0 0 0);";
+    const entry* e = region.findEntry(key, keyType::LITERAL);
+    if (!e)
+    {
+        FatalIOErrorInFunction(region)
+            << "Entry '" << key << "' not found in " << owner.c_str() << '\n'
+            << valid.c_str() << Foam::exit(Foam::FatalIOError);
+    }
+    const bool stream = e->isStream();
+    Foam::ITstream* is = stream ? &e->stream() : nullptr;
+    bool ok =
+        stream && is->size() == 5
+     && (*is)[0].isPunctuation() && (*is)[0].pToken() == Foam::token::BEGIN_LIST
+     && (*is)[4].isPunctuation() && (*is)[4].pToken() == Foam::token::END_LIST;
+    pmsh::point p{};
+    for (int k = 0; ok && k < 3; ++k)
+    {
+        ok = (*is)[k + 1].isNumber() && std::isfinite((*is)[k + 1].number());
+        if (ok) p[k] = (*is)[k + 1].number();
+    }
+    if (!ok)
+    {
+        invalid(region, *e, valid);
+    }
+    return p;
+}
+
+
+//- A required number > 0 of a region (its radius).
+double readPositive
+(
+    const dictionary& region,
+    const char* key,
+    const std::string& owner
+)
+{
+    const std::string valid =
+        "Entry '" + std::string(key) + "' of " + owner + " must be a number > 0";
+    if (!region.findEntry(key, keyType::LITERAL))
+    {
+        FatalIOErrorInFunction(region)
+            << "Entry '" << key << "' not found in " << owner.c_str() << '\n'
+            << valid.c_str() << Foam::exit(Foam::FatalIOError);
+    }
+    return bounded
+    (
+        region, key, 0, std::numeric_limits<double>::min(),
+        std::numeric_limits<double>::max(), false, valid
+    );
+}
+
+
+//- The refinementRegions sub-dictionary: one shape per entry.
+std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regionsEntry)
+{
+    using pmsh::sizeRegion;
+    const std::vector<std::string> shapes = sizeRegion::shapeNames();
+    const std::string validTypes = "Valid region types are: " + joined(shapes);
+    const std::string example =
+        "    refinementRegions\n    {\n"
+        "        wake { type box; min (0 -1 -1); max (4 1 1); maxCellSize 0.05; }\n"
+        "        nose { type sphere; centre (0 0 0); radius 0.5; maxCellSize 0.02; }\n"
+        "        shaft { type cylinder; point1 (0 0 0); point2 (1 0 0);"
+        " radius 0.1; maxCellSize 0.02; }\n    }";
+    if (!regionsEntry.isDict())
+    {
+        invalid
+        (
+            d, regionsEntry,
+            "Expected a sub-dictionary of named regions, e.g.\n" + example
+        );
+    }
+
+    std::vector<sizeRegion> regions;
+    for (const entry& r : regionsEntry.dict())
+    {
+        const std::string owner = "region '" + r.keyword() + "'";
+        if (r.keyword().isPattern() || !r.isDict())
+        {
+            invalid(d, r, "Expected '" + r.keyword() + " { type T; ... }' with T"
+                " one of: " + joined(shapes) + ", e.g.\n" + example);
+        }
+        const dictionary& rd = r.dict();
+        const entry* t = rd.findEntry("type", keyType::LITERAL);
+        if (!t)
+        {
+            entryError(d, r)
+                << "Entry 'type' not found in " << owner.c_str() << "\n"
+                << validTypes.c_str() << Foam::exit(Foam::FatalIOError);
+        }
+        const Foam::token* tok = single(*t);
+        if (!tok || !tok->isStringType() || !contains(shapes, tok->stringToken()))
+        {
+            invalid(rd, *t, validTypes);
+        }
+
+        sizeRegion region;
+        region.name = r.keyword();
+        const std::string type = tok->stringToken();
+        std::vector<std::string> entries{"type", "maxCellSize"};
+        if (type == "box")
+        {
+            region.type = sizeRegion::shape::box;
+            entries.insert(entries.end(), {"min", "max"});
+        }
+        else if (type == "sphere")
+        {
+            region.type = sizeRegion::shape::sphere;
+            entries.insert(entries.end(), {"centre", "radius"});
+        }
+        else
+        {
+            region.type = sizeRegion::shape::cylinder;
+            entries.insert(entries.end(), {"point1", "point2", "radius"});
+        }
+        for (const entry& x : rd)
+        {
+            if (!contains(entries, x.keyword()))
+            {
+                entryError(d, x)
+                    << "Unknown entry '" << x.keyword().c_str() << "' in "
+                    << owner.c_str() << '.'
+                    << suggestion(x.keyword(), entries).c_str() << '\n'
+                    << "Valid entries of a " << type.c_str() << " are: "
+                    << joined(entries).c_str() << Foam::exit(Foam::FatalIOError);
+            }
+        }
+
+        switch (region.type)
+        {
+            case sizeRegion::shape::box:
+                region.min = readPoint(rd, "min", owner);
+                region.max = readPoint(rd, "max", owner);
+                for (int k = 0; k < 3; ++k)
+                {
+                    if (!(region.min[k] < region.max[k]))
+                    {
+                        invalid
+                        (
+                            rd, *rd.findEntry("max", keyType::LITERAL),
+                            "Every component of 'max' of " + owner
+                          + " must be larger than that of 'min'",
+                            " (not above min)"
+                        );
+                    }
+                }
+                break;
+            case sizeRegion::shape::sphere:
+                region.centre = readPoint(rd, "centre", owner);
+                region.radius = readPositive(rd, "radius", owner);
+                break;
+            case sizeRegion::shape::cylinder:
+                region.point1 = readPoint(rd, "point1", owner);
+                region.point2 = readPoint(rd, "point2", owner);
+                region.radius = readPositive(rd, "radius", owner);
+                if (!(magSqr(region.point2 - region.point1) > 0))
+                {
+                    invalid
+                    (
+                        rd, *rd.findEntry("point2", keyType::LITERAL),
+                        "point1 and point2 of " + owner + " are the ends of"
+                        " its axis and must differ",
+                        " (the same as point1)"
+                    );
+                }
+                break;
+        }
+        region.size = localSize(d, rd, owner, true);
+
+        // The samples that restrict the coarse size are about the coarse
+        // cells the region will hold: refuse what no master could mesh
+        const double nSamples = region.volume()/std::pow(region.size, 3);
+        if (nSamples > 1e8)
+        {
+            entryError(d, r)
+                << "Region '" << r.keyword().c_str() << "' would hold about "
+                << nSamples << " coarse cells of size " << region.size
+                << " (its volume is " << region.volume() << ")\n"
+                << "Use a larger maxCellSize or a smaller region"
+                << Foam::exit(Foam::FatalIOError);
+        }
+        regions.push_back(region);
+    }
+    return regions;
+}
+
+
 void checkPatches(const dictionary& d, const entry& patchesEntry)
 {
     const std::vector<std::string> types = meshSettingsPatchTypes();
@@ -295,18 +526,22 @@ void checkPatches(const dictionary& d, const entry& patchesEntry)
               + joined(types)
             );
         }
+        const std::vector<std::string> entries = meshSettingsPatchEntries();
         for (const entry& x : p.dict())
         {
-            if (x.keyword() != "type")
+            if (!contains(entries, x.keyword()))
             {
                 entryError(d, x)
                     << "Unknown entry '" << x.keyword().c_str()
-                    << "' in patch '" << p.keyword().c_str() << "'\n"
-                    << "The only valid entry of a patch is 'type' ("
-                    << joined(types).c_str() << ")"
+                    << "' in patch '" << p.keyword().c_str() << "'."
+                    << suggestion(x.keyword(), entries).c_str() << '\n'
+                    << "Valid entries of a patch are: 'type' ("
+                    << joined(types).c_str() << ") and 'maxCellSize' (the"
+                    << " coarse cell size on the patch)"
                     << Foam::exit(Foam::FatalIOError);
             }
         }
+        localSize(d, p.dict(), "patch '" + p.keyword() + "'");
         const entry* t = p.dict().findEntry("type", keyType::LITERAL);
         if (!t)
         {
@@ -334,7 +569,8 @@ std::vector<std::string> meshSettingsEntries()
     {
         "geometry", "maxCellSize", "grading", "refinementLevels",
         "coarseMesher", "volumeMesher", "optimisationSteps",
-        "volumeMesherThreads", "patches"
+        "volumeMesherThreads", "curvatureRefinement", "patches",
+        "refinementRegions"
     };
 }
 
@@ -342,6 +578,12 @@ std::vector<std::string> meshSettingsEntries()
 std::vector<std::string> meshSettingsPatchTypes()
 {
     return {"patch", "wall", "symmetry", "symmetryPlane"};
+}
+
+
+std::vector<std::string> meshSettingsPatchEntries()
+{
+    return {"type", "maxCellSize"};
 }
 
 
@@ -387,6 +629,30 @@ meshSettings::patchTypeChoice meshSettings::choosePatchType
         return {"symmetry", "its name"};
     }
     return {"wall", "default"};
+}
+
+
+double meshSettings::patchMaxCellSize(const std::string& patchName) const
+{
+    // The same entry as patchType's
+    const entry* e = patches.findEntry(patchName, keyType::REGEX);
+    return
+        e && e->isDict()
+      ? e->dict().getOrDefault<Foam::scalar>("maxCellSize", 0)
+      : 0;
+}
+
+
+bool meshSettings::hasPatchSizes() const
+{
+    for (const entry& e : patches)
+    {
+        if (e.isDict() && e.dict().found("maxCellSize", keyType::LITERAL))
+        {
+            return true;
+        }
+    }
+    return false;
 }
 
 
@@ -474,10 +740,26 @@ meshSettings readMeshSettings
         " (threads per rank; 1 with one rank per core)"
     );
 
+    // Default 3: a ball of radius 0.5 at maxCellSize 1 then gets 120
+    // coarse faces from its STL (mean edge 0.24), as from CSG, where
+    // Netgen always sizes by curvature (128, 0.23); with 0 or 2 it gets 70
+    // (0.31), whatever the global size
+    s.curvatureRefinement = bounded
+    (
+        dict, "curvatureRefinement", 3, 0, 100, false,
+        "Valid values are numbers 0 <= curvatureRefinement <= 100: coarse"
+        " cells per radian of STL surface curvature (0 = off)"
+    );
+
     if (const entry* e = dict.findEntry("patches", keyType::LITERAL))
     {
         checkPatches(dict, *e);
         s.patches = e->dict();
+    }
+
+    if (const entry* e = dict.findEntry("refinementRegions", keyType::LITERAL))
+    {
+        s.refinementRegions = readRegions(dict, *e);
     }
 
     return s;

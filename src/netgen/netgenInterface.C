@@ -37,7 +37,15 @@
     volume optimisation then removes no cells (1.2-1.8x as many; which
     surfaces take that path depends on the point order: 1 of 7 partition
     surfaces at r = 3 and 3 of 96 at r = 2 in the tutorials): the flags are
-    cleared before it.
+    cleared before it;
+  - local sizes (restrictLocalSizes): the local size tree exists only
+    inside the meshing calls. CSGGenerateMesh creates it in its analysis
+    step and accepts only points (meshsize_points) before the edges: it is
+    run up to the analysis, restricted, and resumed from the edges.
+    Ng_STL_MakeEdges creates it (always with grading 0.3) before lines and
+    surface are meshed in Ng_STL_GenerateSurfaceMesh: it is restricted in
+    between. RestrictLocalH ignores points outside the tree's box;
+  - STL curvature sizing (stlparam.resthsurfcurvenable) is off by default.
 \*---------------------------------------------------------------------------*/
 
 #include "netgenInterface.H"
@@ -549,6 +557,46 @@ std::string exceptionText(const std::exception& e)
     return s.empty() ? std::string("(no message)") : s;
 }
 
+
+//- Restrict the local mesh size of mesh (its tree must exist) by the local
+//  sizes of the parameters: at every size point, and on a grid of spacing
+//  region.size inside every region (the tree's boxes there become that
+//  small; samples outside the tree's box are ignored by Netgen anyway, so
+//  only the part of a region inside it is sampled). Sizes not below maxh
+//  change nothing and are skipped.
+void restrictLocalSizes(netgen::Mesh& mesh, const pmsh::ng::meshParameters& p)
+{
+    using namespace pmsh;
+    for (const sizePoint& s : p.sizePoints)
+    {
+        if (s.size < p.maxh)
+        {
+            mesh.RestrictLocalH(netgen::Point3d(s.p[0], s.p[1], s.p[2]), s.size);
+        }
+    }
+    if (p.regions.empty())
+    {
+        return;
+    }
+    const netgen::Box<3>& box = mesh.LocalHFunction().GetBoundingBox();
+    const point lo{box.PMin()(0), box.PMin()(1), box.PMin()(2)};
+    const point hi{box.PMax()(0), box.PMax()(1), box.PMax()(2)};
+    for (const sizeRegion& r : p.regions)
+    {
+        if (r.size < p.maxh)
+        {
+            forEachSample
+            (
+                r, lo, hi,
+                [&](const point& x)
+                {
+                    mesh.RestrictLocalH(netgen::Point3d(x[0], x[1], x[2]), r.size);
+                }
+            );
+        }
+    }
+}
+
 } // End anonymous namespace
 } // End namespace pmsh
 
@@ -837,7 +885,29 @@ pmsh::ng::volumeMesh pmsh::ng::csgModel::generateMesh
     try
     {
         const progressReport progress(session.console(), coarseProgressInterval);
-        rc = impl_->geometry->GenerateMesh(mesh, mp);
+        if (parameters.regions.empty() && parameters.sizePoints.empty())
+        {
+            rc = impl_->geometry->GenerateMesh(mesh, mp);
+        }
+        else
+        {
+            // Quirk: CSGGenerateMesh creates the local size tree in its
+            // first step (analysis) and uses it from the edges on; only
+            // points (mp.meshsize_points) can be added in between. So: stop
+            // after the analysis, restrict the tree, and go on from the
+            // edges (DeleteMesh in between keeps the tree)
+            const auto end = mp.perfstepsend;
+            mp.perfstepsend = netgen::MESHCONST_ANALYSE;
+            rc = impl_->geometry->GenerateMesh(mesh, mp);
+            if (rc == 0 && mesh && mesh->LocalHFunctionGenerated())
+            {
+                restrictLocalSizes(*mesh, parameters);
+                mp.perfstepsstart = netgen::MESHCONST_MESHEDGES;
+                mp.perfstepsend = end;
+                netgen::mparam = mp;
+                rc = impl_->geometry->GenerateMesh(mesh, mp);
+            }
+        }
     }
     catch (const std::exception& e)
     {
@@ -1057,11 +1127,26 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
     mp.grading = parameters.grading;
     mp.optsteps_3d = parameters.optimisationSteps;
 
+    // Curvature-based sizes: along every STL edge whose two triangles are
+    // not separated by a feature edge, h <= (radius of the cylinder
+    // through both)/resthsurfcurvfac (Netgen's default: off)
+    if (parameters.curvatureRefinement > 0)
+    {
+        netgen::stlparam.resthsurfcurvenable = 1;
+        netgen::stlparam.resthsurfcurvfac = parameters.curvatureRefinement;
+    }
+
     const char* step = "finding edges";
     try
     {
         const progressReport progress(session.console(), coarseProgressInterval);
         nglib::Ng_STL_MakeEdges(geo, mesh, &mp);
+
+        // Ng_STL_MakeEdges creates the local size tree (with grading 0.3,
+        // whatever mp.grading says) and builds the charts; lines and
+        // surface are meshed in Ng_STL_GenerateSurfaceMesh, from the tree
+        // as restricted here
+        restrictLocalSizes(*reinterpret_cast<netgen::Mesh*>(mesh), parameters);
 
         step = "meshing the surface";
         nglib::Ng_STL_GenerateSurfaceMesh(geo, mesh, &mp);
@@ -1206,6 +1291,7 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
         mp.Transfer_Parameters();
         netgen::Mesh& volume = *reinterpret_cast<netgen::Mesh*>(mesh);
         volume.CalcLocalH(netgen::mparam.grading);
+        restrictLocalSizes(volume, p);
         netgen::MeshVolume(netgen::mparam, volume);
         netgen::RemoveIllegalElements(volume);
         for (netgen::Element& tet : volume.VolumeElements())

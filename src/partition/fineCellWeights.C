@@ -22,7 +22,8 @@ std::vector<double> pmsh::fineCellWeights
 (
     const CoarseMesh& coarse,
     double maxCellSize,
-    int refinementLevels
+    int refinementLevels,
+    const std::vector<sizeRegion>& regions
 )
 {
     const label nPoints = coarse.nPoints();
@@ -78,6 +79,17 @@ std::vector<double> pmsh::fineCellWeights
         const double volume = tetVolume6(x[t[0]], x[t[1]], x[t[2]], x[t[3]])/6;
         const double h = 0.25*(size[t[0]] + size[t[1]] + size[t[2]] + size[t[3]]);
         weights[c] = volume/(H*H*h);
+
+        // Inside a refinement region the volume mesher is held to the
+        // region's size, as to H in a uniform mesh: 1/h^3 there
+        const point centroid = 0.25*(x[t[0]] + x[t[1]] + x[t[2]] + x[t[3]]);
+        for (const sizeRegion& r : regions)
+        {
+            if (r.size < H && r.contains(centroid))
+            {
+                weights[c] = std::max(weights[c], 2*volume/(h*h*h));
+            }
+        }
     }
 
     // Geometry faces, each added to its cell

@@ -5,6 +5,7 @@
 #include "meshPatch.H"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -31,7 +32,12 @@ pmsh::volumeMeshParameters pmsh::volumeParameters
         p.interfaceTriangles[t] = isInterfaceRegion(surface.region[t]);
     }
     p.what = "partition " + std::to_string(rank);
-    p.maxCellSize = settings.maxCellSize/double(1 << settings.refinementLevels);
+    const double toFine = double(1 << settings.refinementLevels);
+    p.maxCellSize = settings.maxCellSize/toFine;
+    for (const sizeRegion& r : settings.refinementRegions)
+    {
+        p.regions.push_back(r.scaled(toFine));
+    }
     p.grading = settings.grading;
     p.optimisationSteps = settings.optimisationSteps;
     p.threads = settings.volumeMesherThreads;
@@ -63,6 +69,73 @@ void pmsh::logCoarseMesh(const CoarseMesh& coarse)
         Info() << ' ' << p.name;
     }
     Info() << '\n';
+}
+
+
+void pmsh::logLocalSizes(const CoarseMesh& coarse, const meshSettings& settings)
+{
+    auto edge = [&coarse](label a, label b)
+    {
+        return std::sqrt(magSqr(coarse.points[a] - coarse.points[b]));
+    };
+    auto note = [&settings](double size)
+    {
+        return
+            size < settings.maxCellSize
+          ? std::string()
+          : " (not below the global maxCellSize: no effect)";
+    };
+
+    for (const sizeRegion& r : settings.refinementRegions)
+    {
+        label nCells = 0;
+        double sum = 0;
+        for (const tetCell& t : coarse.tets)
+        {
+            const point centroid =
+                0.25*(coarse.points[t[0]] + coarse.points[t[1]]
+                    + coarse.points[t[2]] + coarse.points[t[3]]);
+            if (r.contains(centroid))
+            {
+                ++nCells;
+                sum +=
+                    edge(t[0], t[1]) + edge(t[0], t[2]) + edge(t[0], t[3])
+                  + edge(t[1], t[2]) + edge(t[1], t[3]) + edge(t[2], t[3]);
+            }
+        }
+        Info()
+            << "    region " << r.name << " (" << r.shapeName()
+            << ", maxCellSize " << r.size << note(r.size) << "): " << nCells
+            << " coarse cells, mean edge "
+            << (nCells ? sum/(6*nCells) : 0) << '\n';
+    }
+
+    if (!settings.hasPatchSizes())
+    {
+        return;
+    }
+    for (std::size_t p = 0; p < coarse.patches.size(); ++p)
+    {
+        const double size = settings.patchMaxCellSize(coarse.patches[p].name);
+        if (!(size > 0))
+        {
+            continue;
+        }
+        label nFaces = 0;
+        double sum = 0;
+        for (const coarseBoundaryFace& f : coarse.boundary)
+        {
+            if (f.patch == label(p))
+            {
+                ++nFaces;
+                sum += edge(f.v[0], f.v[1]) + edge(f.v[1], f.v[2]) + edge(f.v[2], f.v[0]);
+            }
+        }
+        Info()
+            << "    patch " << coarse.patches[p].name << " (maxCellSize " << size
+            << note(size) << "): " << nFaces << " coarse boundary faces, mean edge "
+            << (nFaces ? sum/(3*nFaces) : 0) << '\n';
+    }
 }
 
 
@@ -115,6 +188,15 @@ pmsh::coarseMeshParameters pmsh::coarseParameters
     p.grading = settings.grading;
     p.mesher = settings.coarseMesher;
     p.failedSurfaceFile = caseDir + "/postProcessing/pmshFoam/failedCoarseSurface.stl";
+    p.regions = settings.refinementRegions;
+    p.curvatureRefinement = settings.curvatureRefinement;
+    if (settings.hasPatchSizes())
+    {
+        p.patchMaxCellSize = [settings](const std::string& patch)
+        {
+            return settings.patchMaxCellSize(patch);
+        };
+    }
     return p;
 }
 

@@ -62,6 +62,75 @@ void initialiseGmsh()
     throw FatalError(m, "pmsh::hxtVolumeMesher::mesh");
 }
 
+
+//- The background field: the cap (field capField) and, where regions
+//  are given, the minimum of it and a field per region that is the
+//  region's size inside it (Gmsh's Box, Ball and Cylinder fields) and
+//  the cap outside.
+int regionSizeFields
+(
+    const std::vector<sizeRegion>& regions,
+    double cap,
+    int capField
+)
+{
+    namespace field = gmsh::model::mesh::field;
+    std::vector<double> fields{double(capField)};
+    for (const sizeRegion& r : regions)
+    {
+        if (!(r.size < cap))
+        {
+            continue;
+        }
+        int f = 0;
+        switch (r.type)
+        {
+            case sizeRegion::shape::box:
+                f = field::add("Box");
+                field::setNumber(f, "XMin", r.min[0]);
+                field::setNumber(f, "YMin", r.min[1]);
+                field::setNumber(f, "ZMin", r.min[2]);
+                field::setNumber(f, "XMax", r.max[0]);
+                field::setNumber(f, "YMax", r.max[1]);
+                field::setNumber(f, "ZMax", r.max[2]);
+                break;
+            case sizeRegion::shape::sphere:
+                f = field::add("Ball");
+                field::setNumber(f, "XCenter", r.centre[0]);
+                field::setNumber(f, "YCenter", r.centre[1]);
+                field::setNumber(f, "ZCenter", r.centre[2]);
+                field::setNumber(f, "Radius", r.radius);
+                break;
+            case sizeRegion::shape::cylinder:
+            {
+                // Gmsh's cylinder is Center +- Axis: the half axis from
+                // the midpoint
+                const point mid = midPoint(r.point1, r.point2);
+                const vector half = 0.5*(r.point2 - r.point1);
+                f = field::add("Cylinder");
+                field::setNumber(f, "XCenter", mid[0]);
+                field::setNumber(f, "YCenter", mid[1]);
+                field::setNumber(f, "ZCenter", mid[2]);
+                field::setNumber(f, "XAxis", half[0]);
+                field::setNumber(f, "YAxis", half[1]);
+                field::setNumber(f, "ZAxis", half[2]);
+                field::setNumber(f, "Radius", r.radius);
+                break;
+            }
+        }
+        field::setNumber(f, "VIn", r.size);
+        field::setNumber(f, "VOut", cap);
+        fields.push_back(f);
+    }
+    if (fields.size() == 1)
+    {
+        return capField;
+    }
+    const int smallest = field::add("Min");
+    field::setNumbers(smallest, "FieldsList", fields);
+    return smallest;
+}
+
 } // End anonymous namespace
 
 
@@ -136,7 +205,10 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         std::ostringstream cap;
         cap << std::setprecision(17) << parameters.maxCellSize;
         gmsh::model::mesh::field::setString(sizeField, "F", cap.str());
-        gmsh::model::mesh::field::setAsBackgroundMesh(sizeField);
+        gmsh::model::mesh::field::setAsBackgroundMesh
+        (
+            regionSizeFields(parameters.regions, parameters.maxCellSize, sizeField)
+        );
         // Gmsh's own tet optimiser costs next to nothing and takes the
         // worst faces from about 80 to 65 degrees; the quality pass below
         // does the rest (bench/results/quality.md)

@@ -19,6 +19,7 @@ pmsh::TetMesh pmsh::netgenVolumeMesher::generate
     mp.maxh = parameters.maxCellSize;
     mp.grading = parameters.grading;
     mp.optimisationSteps = parameters.optimisationSteps;
+    mp.regions = parameters.regions;
 
     ng::volumeMesh m =
         ng::surfaceVolumeMesh(surfacePoints, surfaceTriangles, mp, parameters.what);

@@ -18,6 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
@@ -149,6 +150,9 @@ TEST_F(meshSettingsTest, optionalEntriesHaveTheirDefaults)
     EXPECT_EQ(s.optimisationSteps, 3);
     EXPECT_EQ(s.volumeMesherThreads, 1);
     EXPECT_EQ(s.patches.size(), 0);
+    EXPECT_TRUE(s.refinementRegions.empty());
+    EXPECT_FALSE(s.hasPatchSizes());
+    EXPECT_DOUBLE_EQ(s.curvatureRefinement, 3);
 
     // The volume mesher fills the coarse surface too, unless told
     EXPECT_EQ(read(minimal() + "volumeMesher hxt;\n").coarseMesher, "hxt");
@@ -313,7 +317,8 @@ TEST_F(meshSettingsTest, unknownEntryIsAnErrorWithASuggestion)
     (
         err,
         "Valid entries are: geometry, maxCellSize, grading, refinementLevels,"
-        " coarseMesher, volumeMesher, optimisationSteps, volumeMesherThreads, patches"
+        " coarseMesher, volumeMesher, optimisationSteps, volumeMesherThreads,"
+        " curvatureRefinement, patches, refinementRegions"
     );
 
     // Nothing close: no guess, still the list
@@ -366,8 +371,9 @@ TEST_F(meshSettingsTest, patchesAreValidated)
     EXPECT_HAS(err, "Valid patch types are");
 
     err = errorFor(minimal() + "patches\n{\n    inlet { type patch; tpye wall; }\n}\n");
-    EXPECT_HAS(err, "Unknown entry 'tpye' in patch 'inlet'");
-    EXPECT_HAS(err, "The only valid entry of a patch is 'type'");
+    EXPECT_HAS(err, "Unknown entry 'tpye' in patch 'inlet'. Did you mean 'type'?");
+    EXPECT_HAS(err, "Valid entries of a patch are: 'type' (patch, wall,");
+    EXPECT_HAS(err, "and 'maxCellSize'");
     EXPECT_HAS(err, "at line 5.");
 
     for (const std::string& type : meshSettingsPatchTypes())
@@ -531,4 +537,227 @@ TEST_F(meshSettingsTest, unreadableGeometryIsAnError)
     }
     fs::permissions(stl, fs::perms::owner_read | fs::perms::owner_write);
     EXPECT_TRUE(ok) << "no 'cannot be read' error naming Entry 'geometry'";
+}
+
+
+// * * * * * * * * * * * * * * * Local sizes  * * * * * * * * * * * * * * * //
+
+TEST_F(meshSettingsTest, patchMaxCellSizeFollowsTheSameEntryAsTheType)
+{
+    const meshSettings s = read
+    (
+        minimal()
+      + "patches\n{\n"
+        "    body   { type wall; maxCellSize 0.01; }\n"
+        "    \"fin.*\" { type wall; maxCellSize 0.02; }\n"
+        "    inlet  { type patch; }\n"
+        "}\n"
+    );
+    EXPECT_TRUE(s.hasPatchSizes());
+    EXPECT_DOUBLE_EQ(s.patchMaxCellSize("body"), 0.01);
+    EXPECT_DOUBLE_EQ(s.patchMaxCellSize("fin2"), 0.02);
+    EXPECT_DOUBLE_EQ(s.patchMaxCellSize("inlet"), 0);
+    EXPECT_DOUBLE_EQ(s.patchMaxCellSize("outlet"), 0);
+    EXPECT_EQ(s.patchType("body"), "wall");
+    EXPECT_FALSE(read(minimal() + "patches { inlet { type patch; } }\n").hasPatchSizes());
+}
+
+TEST_F(meshSettingsTest, patchMaxCellSizeMustBePositive)
+{
+    // (as OpenFOAM writes the value back: a list with spaces inside)
+    for (const std::string bad : {"0", "-0.1", "small", "( 1 2 )"})
+    {
+        const std::string err = errorFor
+        (
+            minimal() + "patches\n{\n    body { type wall; maxCellSize "
+          + bad + "; }\n}\n"
+        );
+        EXPECT_HAS(err, "Entry 'maxCellSize' is " + bad);
+        EXPECT_HAS(err, "maxCellSize of patch 'body' must be a number > 0");
+        EXPECT_HAS(err, "larger than the global maxCellSize does not refine");
+        EXPECT_HAS(err, "at line 5.");
+    }
+}
+
+TEST_F(meshSettingsTest, readsEveryRegionType)
+{
+    const meshSettings s = read
+    (
+        minimal()
+      + "refinementRegions\n{\n"
+        "    wake { type box; min (0 -0.02 -0.02); max (0.1 0.02 0.02); maxCellSize 0.002; }\n"
+        "    nose { type sphere; centre (0 0 1e-3); radius 0.01; maxCellSize 0.0005; }\n"
+        "    shaft { type cylinder; point1 (0 0 0); point2 (1 0 0); radius 0.1; maxCellSize 0.01; }\n"
+        "}\n"
+    );
+    ASSERT_EQ(s.refinementRegions.size(), 3u);
+
+    const sizeRegion& wake = s.refinementRegions[0];
+    EXPECT_EQ(wake.name, "wake");
+    EXPECT_EQ(wake.type, sizeRegion::shape::box);
+    EXPECT_EQ(wake.min, (point{0, -0.02, -0.02}));
+    EXPECT_EQ(wake.max, (point{0.1, 0.02, 0.02}));
+    EXPECT_DOUBLE_EQ(wake.size, 0.002);
+    EXPECT_TRUE(wake.contains({0.05, 0, 0.01}));
+    EXPECT_FALSE(wake.contains({0.05, 0, 0.03}));
+
+    const sizeRegion& nose = s.refinementRegions[1];
+    EXPECT_EQ(nose.type, sizeRegion::shape::sphere);
+    EXPECT_EQ(nose.centre, (point{0, 0, 1e-3}));
+    EXPECT_DOUBLE_EQ(nose.radius, 0.01);
+    EXPECT_DOUBLE_EQ(nose.size, 0.0005);
+    EXPECT_TRUE(nose.contains({0, 0.009, 1e-3}));
+    EXPECT_FALSE(nose.contains({0.008, 0.008, 1e-3}));
+
+    const sizeRegion& shaft = s.refinementRegions[2];
+    EXPECT_EQ(shaft.type, sizeRegion::shape::cylinder);
+    EXPECT_EQ(shaft.point1, (point{0, 0, 0}));
+    EXPECT_EQ(shaft.point2, (point{1, 0, 0}));
+    EXPECT_DOUBLE_EQ(shaft.radius, 0.1);
+    EXPECT_TRUE(shaft.contains({0.5, 0.09, 0}));
+    EXPECT_FALSE(shaft.contains({0.5, 0.08, 0.08}));
+    EXPECT_FALSE(shaft.contains({1.01, 0, 0}));
+    EXPECT_FALSE(shaft.contains({-0.01, 0, 0}));
+}
+
+TEST_F(meshSettingsTest, unknownRegionTypeListsTheValidTypes)
+{
+    std::string err = errorFor
+    (
+        minimal() + "refinementRegions\n{\n    r { type cone; maxCellSize 0.1; }\n}\n"
+    );
+    EXPECT_HAS(err, "Entry 'type' is cone");
+    EXPECT_HAS(err, "Valid region types are: box, sphere, cylinder");
+    EXPECT_HAS(err, "at line 5.");
+
+    err = errorFor(minimal() + "refinementRegions\n{\n    r { maxCellSize 0.1; }\n}\n");
+    EXPECT_HAS(err, "Entry 'type' not found in region 'r'");
+    EXPECT_HAS(err, "Valid region types are: box, sphere, cylinder");
+
+    err = errorFor(minimal() + "refinementRegions box;\n");
+    EXPECT_HAS(err, "Entry 'refinementRegions' is box");
+    EXPECT_HAS(err, "sub-dictionary of named regions");
+
+    err = errorFor(minimal() + "refinementRegions\n{\n    r box;\n}\n");
+    EXPECT_HAS(err, "Entry 'r' is box");
+    EXPECT_HAS(err, "box, sphere, cylinder");
+}
+
+TEST_F(meshSettingsTest, missingOrInvalidRegionEntriesAreNamed)
+{
+    const std::string head = minimal() + "refinementRegions\n{\n    r { ";
+    const std::string tail = " }\n}\n";
+
+    std::string err = errorFor(head + "type box; max (1 1 1); maxCellSize 0.1;" + tail);
+    EXPECT_HAS(err, "Entry 'min' not found in region 'r'");
+    EXPECT_HAS(err, "must be a point (x y z)");
+
+    err = errorFor(head + "type box; min (0 0); max (1 1 1); maxCellSize 0.1;" + tail);
+    EXPECT_HAS(err, "Entry 'min' is ( 0 0 )");
+    EXPECT_HAS(err, "Entry 'min' of region 'r' must be a point (x y z)");
+    EXPECT_HAS(err, "at line 5.");
+
+    err = errorFor(head + "type box; min (0 0 a); max (1 1 1); maxCellSize 0.1;" + tail);
+    EXPECT_HAS(err, "Entry 'min' is ( 0 0 a )");
+
+    err = errorFor(head + "type box; min (0 0 0); max (1 0 1); maxCellSize 0.1;" + tail);
+    EXPECT_HAS(err, "Entry 'max' is ( 1 0 1 ) (not above min)");
+    EXPECT_HAS(err, "must be larger than that of 'min'");
+
+    err = errorFor(head + "type box; min (0 0 0); max (1 1 1);" + tail);
+    EXPECT_HAS(err, "Entry 'maxCellSize' not found in region 'r'");
+    EXPECT_HAS(err, "must be a number > 0");
+
+    err = errorFor(head + "type sphere; centre (0 0 0); maxCellSize 0.1;" + tail);
+    EXPECT_HAS(err, "Entry 'radius' not found in region 'r'");
+
+    err = errorFor(head + "type sphere; radius 1; maxCellSize 0.1;" + tail);
+    EXPECT_HAS(err, "Entry 'centre' not found in region 'r'");
+
+    err = errorFor(head + "type sphere; centre (0 0 0); radius -1; maxCellSize 0.1;" + tail);
+    EXPECT_HAS(err, "Entry 'radius' is -1");
+    EXPECT_HAS(err, "Entry 'radius' of region 'r' must be a number > 0");
+
+    err = errorFor(head + "type cylinder; point1 (0 0 0); radius 1; maxCellSize 0.1;" + tail);
+    EXPECT_HAS(err, "Entry 'point2' not found in region 'r'");
+
+    err = errorFor(head + "type cylinder; point1 (0 0 0); point2 (0 0 0); radius 1; maxCellSize 0.1;" + tail);
+    EXPECT_HAS(err, "Entry 'point2' is ( 0 0 0 ) (the same as point1)");
+
+    // An entry of another shape is a typo, not silently ignored
+    err = errorFor(head + "type sphere; centre (0 0 0); radius 1; min (0 0 0); maxCellSize 0.1;" + tail);
+    EXPECT_HAS(err, "Unknown entry 'min' in region 'r'");
+    EXPECT_HAS(err, "Valid entries of a sphere are: type, maxCellSize, centre, radius");
+
+    err = errorFor(head + "type sphere; centre (0 0 0); raduis 1; maxCellSize 0.1;" + tail);
+    EXPECT_HAS(err, "Unknown entry 'raduis' in region 'r'. Did you mean 'radius'?");
+}
+
+TEST_F(meshSettingsTest, regionMaxCellSizeMustBePositive)
+{
+    for (const char* bad : {"0", "-1", "fine"})
+    {
+        const std::string err = errorFor
+        (
+            minimal() + "refinementRegions\n{\n    r { type sphere; centre (0 0 0);"
+            " radius 1; maxCellSize " + bad + "; }\n}\n"
+        );
+        EXPECT_HAS(err, "Entry 'maxCellSize' is " + std::string(bad));
+        EXPECT_HAS(err, "maxCellSize of region 'r' must be a number > 0");
+        EXPECT_HAS(err, "larger than the global maxCellSize does not refine");
+    }
+
+    // Larger than the global size: accepted (it simply does not refine)
+    const meshSettings s = read
+    (
+        minimal() + "refinementRegions { r { type sphere; centre (0 0 0);"
+        " radius 1; maxCellSize 5; } }\n"
+    );
+    EXPECT_DOUBLE_EQ(s.refinementRegions.at(0).size, 5);
+}
+
+TEST_F(meshSettingsTest, regionThatNoMasterCouldMeshIsAnError)
+{
+    const std::string err = errorFor
+    (
+        minimal() + "refinementRegions\n{\n    huge { type box; min (0 0 0);"
+        " max (10 10 10); maxCellSize 1e-3; }\n}\n"
+    );
+    EXPECT_HAS(err, "Region 'huge' would hold about 1e+12 coarse cells");
+    EXPECT_HAS(err, "Use a larger maxCellSize or a smaller region");
+}
+
+TEST_F(meshSettingsTest, curvatureRefinementIsANonNegativeNumber)
+{
+    EXPECT_DOUBLE_EQ(read(minimal() + "curvatureRefinement 0;\n").curvatureRefinement, 0);
+    EXPECT_DOUBLE_EQ(read(minimal() + "curvatureRefinement 3.5;\n").curvatureRefinement, 3.5);
+    const std::string err = errorFor(minimal() + "curvatureRefinement -1;\n");
+    EXPECT_HAS(err, "Entry 'curvatureRefinement' is -1");
+    EXPECT_HAS(err, "coarse cells per radian of STL surface curvature");
+}
+
+TEST_F(meshSettingsTest, regionSamplesCoverTheShapeAtItsSize)
+{
+    sizeRegion ball;
+    ball.type = sizeRegion::shape::sphere;
+    ball.centre = {1, 2, 3};
+    ball.radius = 1;
+    ball.size = 0.1;
+    std::size_t n = 0;
+    const std::size_t visited = forEachSample
+    (
+        ball, {-10, -10, -10}, {10, 10, 10},
+        [&](const point& p) { EXPECT_TRUE(ball.contains(p)); ++n; }
+    );
+    EXPECT_EQ(n, visited);
+    // About the sphere's volume in cubes of the size
+    EXPECT_NEAR(double(n), ball.volume()/std::pow(ball.size, 3), 0.05*n);
+
+    // Only the part inside the given bounds
+    const std::size_t half = forEachSample
+    (
+        ball, {1, -10, -10}, {10, 10, 10}, [](const point& p) { EXPECT_GE(p[0], 1 - 0.1); }
+    );
+    EXPECT_NEAR(double(half), 0.5*n, 0.1*n);
+    EXPECT_EQ(forEachSample(ball, {5, 5, 5}, {6, 6, 6}, [](const point&) {}), 0u);
 }

@@ -692,6 +692,47 @@ TEST_F(partition, fineCellWeightsFollowVolumeOverLocalSizeAndTheGeometry)
 }
 
 
+TEST_F(partition, fineCellWeightsInsideARefinementRegionFollowOneOverSizeCubed)
+{
+    // The unit cube's cells (edges about 1/4) in a mesh of H = 1: inside a
+    // region the volume mesher is held to the region's size, so the cells
+    // there weigh 2 V/h^3 instead of V/(H^2 h), 2 H^2/h^2 (~32) times more;
+    // a region that does not refine (size >= H) changes nothing
+    const CoarseMesh m = test::cubeMesh(4);
+    sizeRegion lower;
+    lower.type = sizeRegion::shape::box;
+    lower.min = {-1, -1, -1};
+    lower.max = {2, 2, 0.5};
+    lower.size = 0.25;
+    sizeRegion coarse = lower;
+    coarse.size = 1.0;
+
+    const std::vector<double> w = fineCellWeights(m, 1.0, 2);
+    const std::vector<double> wRegion = fineCellWeights(m, 1.0, 2, {lower});
+    EXPECT_EQ(fineCellWeights(m, 1.0, 2, {coarse}), w);
+    const std::vector<faceNeighbours> nbrs = coarseFaceNeighbours(m);
+    label nInside = 0;
+    for (std::size_t c = 0; c < w.size(); ++c)
+    {
+        const tetCell& t = m.tets[c];
+        const double z =
+            0.25*(m.points[t[0]][2] + m.points[t[1]][2] + m.points[t[2]][2] + m.points[t[3]][2]);
+        const bool onGeometry = std::any_of(nbrs[c].begin(), nbrs[c].end(), isBoundaryNeighbour);
+        if (z <= 0.5)
+        {
+            // (the geometry's term, which dominates cells on it, stays)
+            ++nInside;
+            EXPECT_GT(wRegion[c], (onGeometry ? 1.5 : 10)*w[c]) << "cell " << c;
+        }
+        else
+        {
+            EXPECT_EQ(wRegion[c], w[c]) << "cell " << c;
+        }
+    }
+    EXPECT_GT(nInside, 0);
+}
+
+
 TEST_F(partition, balancedPartsCarryEqualWeightAndStayManifolds)
 {
     // Cells in the half x < 0.5 weigh 3: unit weights would give parts of
