@@ -13,7 +13,7 @@ import sys
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import TutorialCase  # noqa: E402
+from testSerialTutorials import CaseTest  # noqa: E402
 
 # A channel with one region of each type, 2 m apart: sizes 4x below the
 # global one inside them
@@ -106,24 +106,12 @@ def mean_patch_edge_lengths(case, np):
     return {k: sums[k] / counts[k] for k in sums}
 
 
-class localSizes(unittest.TestCase):
+class localSizes(CaseTest):
 
-    def setUp(self):
-        self.cases = []
-
-    def tearDown(self):
-        failed = not self._outcome.success
-        for case in self.cases:
-            if failed:
-                print("kept for inspection: " + case.dir)
-            else:
-                case.cleanup()
-
-    def case(self, geo, entries):
+    def local_case(self, geo, entries):
         """The sphere tutorial's case (fields, controlDict) with another
         geometry and a pmshDict of these entries."""
-        c = TutorialCase("sphere")
-        self.cases.append(c)
+        c = self.case("sphere")
         # Its fields name the sphere's patch, not these
         shutil.rmtree(os.path.join(c.dir, "0"))
         with open(os.path.join(c.dir, "constant/geometry/local.geo"), "w") as f:
@@ -135,7 +123,7 @@ class localSizes(unittest.TestCase):
         return c
 
     def check_regions(self, np, mesher="netgen"):
-        c = self.case(CHANNEL_GEO,
+        c = self.local_case(CHANNEL_GEO,
                       "maxCellSize %g;\nrefinementLevels 1;\nvolumeMesher %s;\n"
                       % (GLOBAL_SIZE, mesher) + REGIONS)
         c.run("pmshFoam", np=np)
@@ -180,7 +168,7 @@ class localSizes(unittest.TestCase):
         self.check_regions(2, "hxt")
 
     def check_patch(self, np):
-        c = self.case(BODY_GEO,
+        c = self.local_case(BODY_GEO,
                       "maxCellSize %g;\nrefinementLevels 1;\n"
                       "patches\n{\n    body { type wall; maxCellSize %g; }\n"
                       "    farfield { type patch; }\n}\n" % (BODY_GLOBAL, BODY_SIZE))
