@@ -243,7 +243,8 @@ pmsh::foldRepair::foldRepair
 {
     for (const coarseBoundaryFace& b : coarse.boundary)
     {
-        boundarySurface_[sortedFace(b.v)] = b.surface;
+        const faceKey f = sortedFace(b.v);
+        boundarySurface_[f] = {b.surface, !sameOrientation(f, b.v)};
     }
     // Every face of every tet that holds a boundary edge: all ranks hold
     // the whole coarse mesh, so all see the same faces around an edge
@@ -274,7 +275,7 @@ pmsh::foldRepair::foldRepair
 pmsh::label pmsh::foldRepair::surfaceOf(const faceKey& f) const
 {
     const auto it = boundarySurface_.find(f);
-    return it == boundarySurface_.end() ? -1 : it->second;
+    return it == boundarySurface_.end() ? -1 : it->second.first;
 }
 
 
@@ -319,7 +320,7 @@ bool pmsh::foldRepair::edgeUnprojected(const edgeKey& e, int round) const
     {
         return memo->second;
     }
-    bool off = edgeUnprojected(e, round - 1);
+    bool off = edgeUnprojected(e, round - 1) || foldsAcross(e, round);
     const auto around = facesAround_.find(e);
     if (!off && around != facesAround_.end())
     {
@@ -381,6 +382,65 @@ bool pmsh::foldRepair::folds(const faceKey& f, int round) const
     const bool result =
         countLatticeFolds(refinedFace(f, round - 1), 1 << levels_) > 0;
     foldsMemo_[key] = result;
+    return result;
+}
+
+
+bool pmsh::foldRepair::foldsAcross(const edgeKey& e, int round) const
+{
+    label s1, s2;
+    if (!geometry_ || !edgeSurfaces_.find(e[0], e[1], s1, s2) || s1 != s2)
+    {
+        return false;   // a feature edge may be as sharp as it likes
+    }
+    // With the previous round's decisions unchanged the answer is the same
+    if (round > 1)
+    {
+        bool changed = false;
+        for (const faceKey& f : boundaryFacesOf(e[0], e[1]))
+        {
+            changed = changed || inputsChanged(f, round - 1);
+        }
+        if (!changed)
+        {
+            return foldsAcross(e, round - 1);
+        }
+    }
+    const auto key = std::make_pair(round, e);
+    const auto memo = acrossMemo_.find(key);
+    if (memo != acrossMemo_.end())
+    {
+        return memo->second;
+    }
+
+    // The outward normal of the fine triangle at segment m of the edge
+    // (counted from e[0]) in each boundary face
+    const int n = 1 << levels_;
+    std::array<std::vector<vector>, 2> normals;
+    const std::array<triFace, 2> faces = boundaryFacesOf(e[0], e[1]);
+    for (int side = 0; side < 2; ++side)
+    {
+        const faceKey& v = faces[side];
+        const std::vector<point> pos = refinedFace(v, round - 1);
+        auto P = [&](int i, int j) -> const point& { return pos[j*(n + 1) + i]; };
+        const bool flip = boundarySurface_.at(v).second;
+        for (int m = 0; m < n; ++m)
+        {
+            // Lattice triangle (i, j), (i + 1, j), (i, j + 1) on the edge
+            int i = 0, j = 0;
+            if (e[0] == v[0] && e[1] == v[1]) { i = m; j = 0; }
+            else if (e[0] == v[1]) { i = n - m - 1; j = m; }
+            else { i = 0; j = m; }
+            const vector nm = cross(P(i + 1, j) - P(i, j), P(i, j + 1) - P(i, j));
+            normals[side].push_back(flip ? -1.0*nm : nm);
+        }
+    }
+    bool result = false;
+    for (int m = 0; m < n && !result; ++m)
+    {
+        result = dot(normals[0][m], normals[1][m]) < 0;
+    }
+    acrossMemo_[key] = result;
     return result;
 }
 
