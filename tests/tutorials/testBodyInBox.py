@@ -67,6 +67,8 @@ class bodyInBox(CaseTest):
         return c
 
     def mesh(self, geometry, np):
+        """Mesh, checkMesh must say Mesh OK, the patches are the solids /
+        bcnames with their types; returns (case, summary.json)."""
         c = self.body_case(geometry)
         _, log = c.run("pmshFoam", np=np)
         self.assertIn("End", log)
@@ -86,7 +88,7 @@ class bodyInBox(CaseTest):
         self.assertIn("maxDistanceOffGeometry", summary)
         # Far below the body's radius (0.5) and the fine cells (~0.3 here)
         self.assertLess(summary["maxDistanceOffGeometry"], 0.05)
-        return c
+        return c, summary
 
     def test_stlSerial(self):
         self.mesh("sphereInBox.stl", 1)
@@ -108,6 +110,26 @@ class bodyInBox(CaseTest):
 
     def test_csgNp4(self):
         self.mesh("sphereInBox.geo", 4)
+
+    # A needle thinner than the coarse cells: the coarse faces wrap round
+    # it and projection folds the refined surface onto itself, which
+    # stopped the volume mesher ("boundary mesh is overlapping") before
+    # the fold repair
+    def needle(self, np):
+        c, summary = self.mesh("needleInBox.stl", np)
+        self.assertGreater(summary["pointsOffGeometry"], 0)
+        # Off by less than the needle's radius (0.03)
+        self.assertLess(summary["maxDistanceOffGeometry"], 0.03)
+        self.assertLessEqual(summary["meanDistanceOffGeometry"], summary["maxDistanceOffGeometry"])
+        with open(os.path.join(c.dir, "log.pmshFoam")) as f:
+            self.assertRegex(f.read(), r"refined points left off the geometry .*: %d,"
+                             % summary["pointsOffGeometry"])
+
+    def test_needleNeedsTheFoldRepairSerial(self):
+        self.needle(1)
+
+    def test_needleNeedsTheFoldRepairNp2(self):
+        self.needle(2)
 
     def test_bodyOrientedIntoTheFluidIsAnErrorNamingItsSolid(self):
         c = self.body_case("sphereInBox.stl")

@@ -16,6 +16,10 @@ themselves, in a temporary directory.
                     radius 0.5 and length 2 along x, tessellated as CAD
                     exporters do (sides as long strips, caps as fans of
                     thin triangles), 90 degree edges, inner orientation
+  needleInBox.stl   the same box around a needle: a capsule of radius 0.03
+                    and length 1.06 along x (16 segments round), thinner
+                    than the coarse cells, so that projection folds the
+                    refined surface onto itself unless repaired
 
 Coordinates are float32 values (written exactly in ascii), so the ascii and
 binary spheres hold bit-identical points."""
@@ -161,6 +165,42 @@ def cad_cylinder(segments, radius, x0, x1):
     return v, f
 
 
+def capsule(segments, radius, x0, x1):
+    """A closed capsule along x (a cylinder with hemispherical ends, poles
+    at its tips), outward."""
+    half = segments // 2
+    profile = []    # (x, r) from the x0 tip to the x1 tip
+    for k in range(half + 1):
+        a = math.pi / 2 * k / half
+        profile.append((x0 - radius * math.cos(a), radius * math.sin(a)))
+    for k in range(half + 1):
+        a = math.pi / 2 * k / half
+        profile.append((x1 + radius * math.sin(a), radius * math.cos(a)))
+    v = [(profile[0][0], 0.0, 0.0)]
+    rings = []
+    for x, r in profile[1:-1]:
+        rings.append(len(v))
+        for i in range(segments):
+            a = 2 * math.pi * i / segments
+            v.append((x, r * math.cos(a), r * math.sin(a)))
+    v.append((profile[-1][0], 0.0, 0.0))
+    v = [tuple(f32(c) for c in p) for p in v]
+    last = len(v) - 1
+    f = []
+    for i in range(segments):
+        j = (i + 1) % segments
+        f.append((0, rings[0] + j, rings[0] + i))
+        f.append((last, rings[-1] + i, rings[-1] + j))
+    for r0, r1 in zip(rings[:-1], rings[1:]):
+        for i in range(segments):
+            j = (i + 1) % segments
+            f.append((r0 + i, r0 + j, r1 + j))
+            f.append((r0 + i, r1 + j, r1 + i))
+    if volume(v, f) < 0:
+        f = flipped(f)
+    return v, f
+
+
 def body_in_box(body_v, body_f, half):
     """Solids inlet (x = -half), outlet (x = half), sides of the box
     [-half, half]^3 and "body", the given closed outward surface flipped so
@@ -204,3 +244,6 @@ if __name__ == '__main__':
     v, f = cad_cylinder(48, 0.5, -1.0, 1.0)
     assert volume(v, f) > 0
     write_ascii('cylinderInBox.stl', body_in_box(v, f, 5.0))
+
+    v, f = capsule(16, 0.03, -0.5, 0.5)
+    write_ascii('needleInBox.stl', body_in_box(v, f, 5.0))
