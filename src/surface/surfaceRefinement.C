@@ -368,10 +368,28 @@ bool pmsh::foldRepair::inputsChanged(const faceKey& f, int round) const
 
 bool pmsh::foldRepair::folds(const faceKey& f, int round) const
 {
+    // A boundary face whose surface still folds across one of its edges
+    // after that edge was left linear: the face itself must go linear
+    if (surfaceOf(f) >= 0)
+    {
+        for (const edgeKey& e : edgesOf(f))
+        {
+            if (edgeUnprojected(e, round - 1) && foldsAcross(e, round))
+            {
+                return true;
+            }
+        }
+    }
+    return latticeFolds(f, round);
+}
+
+
+bool pmsh::foldRepair::latticeFolds(const faceKey& f, int round) const
+{
     // With the previous round's inputs unchanged the answer is the same
     if (round > 1 && !inputsChanged(f, round - 1))
     {
-        return folds(f, round - 1);
+        return latticeFolds(f, round - 1);
     }
     const auto key = std::make_pair(round, f);
     const auto memo = foldsMemo_.find(key);
@@ -413,17 +431,23 @@ bool pmsh::foldRepair::foldsAcross(const edgeKey& e, int round) const
         return memo->second;
     }
 
-    // The outward normal of the fine triangle at segment m of the edge
-    // (counted from e[0]) in each boundary face
+    // The outward unit normal of the fine triangle at segment m of the
+    // edge (counted from e[0]) in each boundary face, and of the coarse face
     const int n = 1 << levels_;
     std::array<std::vector<vector>, 2> normals;
+    std::array<vector, 2> coarseNormal;
     const std::array<triFace, 2> faces = boundaryFacesOf(e[0], e[1]);
+    auto unit = [](const vector& v, bool flip)
+    {
+        return (flip ? -1.0 : 1.0)/std::sqrt(magSqr(v))*v;
+    };
     for (int side = 0; side < 2; ++side)
     {
         const faceKey& v = faces[side];
         const std::vector<point> pos = refinedFace(v, round - 1);
         auto P = [&](int i, int j) -> const point& { return pos[j*(n + 1) + i]; };
         const bool flip = boundarySurface_.at(v).second;
+        coarseNormal[side] = unit(cross(P(n, 0) - P(0, 0), P(0, n) - P(0, 0)), flip);
         for (int m = 0; m < n; ++m)
         {
             // Lattice triangle (i, j), (i + 1, j), (i, j + 1) on the edge
@@ -431,14 +455,22 @@ bool pmsh::foldRepair::foldsAcross(const edgeKey& e, int round) const
             if (e[0] == v[0] && e[1] == v[1]) { i = m; j = 0; }
             else if (e[0] == v[1]) { i = n - m - 1; j = m; }
             else { i = 0; j = m; }
-            const vector nm = cross(P(i + 1, j) - P(i, j), P(i, j + 1) - P(i, j));
-            normals[side].push_back(flip ? -1.0*nm : nm);
+            normals[side].push_back
+            (
+                unit(cross(P(i + 1, j) - P(i, j), P(i, j + 1) - P(i, j)), flip)
+            );
         }
     }
+    // Folded onto itself: the two fine triangles nearly back to back (less
+    // than about 25 degrees between them), clearly sharper than the coarse faces
+    // (where the coarse surface is that sharp already, as round a thin
+    // part, linear points would not help)
+    const double coarseCos = dot(coarseNormal[0], coarseNormal[1]);
     bool result = false;
     for (int m = 0; m < n && !result; ++m)
     {
-        result = dot(normals[0][m], normals[1][m]) < 0;
+        const double fineCos = dot(normals[0][m], normals[1][m]);
+        result = fineCos < -0.9 && fineCos < coarseCos - 0.01;
     }
     acrossMemo_[key] = result;
     return result;

@@ -5,6 +5,7 @@
 #include "Geometry.H"
 #include "meshPatch.H"
 #include "surfaceChecks.H"
+#include "testPaths.H"
 #include "pmshError.H"
 
 #include <gtest/gtest.h>
@@ -442,4 +443,77 @@ TEST(surfaceRefinement, foldRepairDecidesAnInterfaceEdgeAlikeOnBothSidesAndAsInS
             s0.repair.nPointsOff + s1.repair.nPointsOff, serial.repair.nPointsOff
         );
     }
+}
+
+
+namespace
+{
+
+// Fine edges across which the two triangles are nearly back to back (their
+// normals more than 155 degrees apart) where their coarse faces are not:
+// the surface folds onto itself there
+label edgesFoldedOntoThemselves
+(
+    const CoarseMesh& m,
+    const coarsePartSurface& ps,
+    const FineSurface& s,
+    int levels
+)
+{
+    auto unitNormal = [](const point& a, const point& b, const point& c)
+    {
+        const vector n = cross(b - a, c - a);
+        return (1/std::sqrt(magSqr(n)))*n;
+    };
+    const std::size_t perFace = std::size_t(1) << (2*levels);
+    std::map<std::pair<label, label>, std::vector<std::pair<vector, vector>>> normalsOfEdge;
+    for (std::size_t ti = 0; ti < s.triangles.size(); ++ti)
+    {
+        const triFace& t = s.triangles[ti];
+        const triFace& f = ps.faces[ti/perFace];
+        const vector n = unitNormal(s.points[t[0]], s.points[t[1]], s.points[t[2]]);
+        const vector nc = unitNormal(m.points[f[0]], m.points[f[1]], m.points[f[2]]);
+        for (int k = 0; k < 3; ++k)
+        {
+            const label a = t[k];
+            const label b = t[(k + 1) % 3];
+            normalsOfEdge[{std::min(a, b), std::max(a, b)}].push_back({n, nc});
+        }
+    }
+    label nFolded = 0;
+    for (const auto& e : normalsOfEdge)
+    {
+        if (e.second.size() == 2)
+        {
+            const double fineCos = dot(e.second[0].first, e.second[1].first);
+            const double coarseCos = dot(e.second[0].second, e.second[1].second);
+            nFolded += fineCos < -0.9 && fineCos < coarseCos - 0.01;
+        }
+    }
+    return nFolded;
+}
+
+} // End anonymous namespace
+
+
+TEST(surfaceRefinement, thinBodyWhoseSurfaceFoldsOntoItselfAcrossCoarseEdgesIsRepaired)
+{
+    // A needle thinner than the coarse cells: no fine triangle turns
+    // against its own coarse face, yet projected edge midpoints land beyond
+    // the neighbouring face's triangles (Netgen: "boundary mesh is
+    // overlapping")
+    const auto g = Geometry::New(testDataDir() + "/geometry/needleInBox.stl");
+    const CoarseMesh m = g->coarseMesh(coarseMeshParameters(2.5, 0.3));
+    const coarsePartSurface ps = partitionSurface(m, {}, 0);
+    const boundaryEdgeSurfaces edges(m);
+    const FineSurface folded = refineSurface(m, ps, edges, g.get(), 1, false);
+    EXPECT_EQ(countFoldedTriangles(m, ps, folded, 1), 0);
+    EXPECT_GT(edgesFoldedOntoThemselves(m, ps, folded, 1), 0);
+
+    const FineSurface repaired = refinePartSurface(m, {}, 0, g.get(), 1);
+    EXPECT_EQ(edgesFoldedOntoThemselves(m, ps, repaired, 1), 0);
+    EXPECT_GT(repaired.repair.nPointsOff, 0);
+    // A few points, off by less than the needle's radius
+    EXPECT_LT(repaired.repair.nPointsOff, 20);
+    EXPECT_LT(repaired.repair.maxDistance, 0.03);
 }
