@@ -744,6 +744,25 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
         }
         return (solids.size() > 1 ? "solids " : "solid ") + names;
     };
+    // Where a shell is: a solid may hold several
+    auto extentOf = [&](label sh)
+    {
+        point lo = s.points[s.triangles[triangles[sh][0]][0]];
+        point hi = lo;
+        for (label t : triangles[sh])
+        {
+            for (label p : s.triangles[t])
+            {
+                for (int k = 0; k < 3; ++k)
+                {
+                    lo[k] = std::min(lo[k], s.points[p][k]);
+                    hi[k] = std::max(hi[k], s.points[p][k]);
+                }
+            }
+        }
+        return " (" + std::to_string(triangles[sh].size()) + " triangles between "
+            + stlPoint(lo) + " and " + stlPoint(hi) + ")";
+    };
 
     for (label sh = 0; sh < nShells; ++sh)
     {
@@ -791,8 +810,8 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
             (
                 msg()
                     << "STL file \"" << fileName << "\" is oriented inward: the"
-                    << " closed surface of " << solidsOf(sh) << " encloses a"
-                    << " negative volume (" << v6/6 << ").\nIts triangle normals"
+                    << " closed surface of " << solidsOf(sh) << extentOf(sh)
+                    << " encloses a negative volume (" << v6/6 << ").\nIts triangle normals"
                     << " point into the solid: flip the normals (reverse the"
                     << " vertex order of every triangle of "
                     << solidsOf(sh) << ")",
@@ -805,7 +824,7 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
             (
                 msg()
                     << "STL file \"" << fileName << "\": the closed surface of "
-                    << solidsOf(sh) << " lies inside that of " << around
+                    << solidsOf(sh) << extentOf(sh) << " lies inside that of " << around
                     << " but its normals point out of it, into the fluid"
                     << " around it.\nA body in the flow is a hole in the"
                     << " domain: its normals must point out of the fluid, into"

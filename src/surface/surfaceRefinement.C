@@ -184,8 +184,8 @@ void fillFace
 
 
 //- Refined triangles of a lattice (points v0 < v1 < v2 at `pos`) that
-//  turned against the coarse face (v0, v1, v2); the first one's centroid.
-label countLatticeFolds(const std::vector<point>& pos, int n, point* where = nullptr)
+//  turned against the coarse face (v0, v1, v2).
+label countLatticeFolds(const std::vector<point>& pos, int n)
 {
     auto P = [&](int i, int j) -> const point& { return pos[j*(n + 1) + i]; };
     const vector coarseNormal =
@@ -195,10 +195,6 @@ label countLatticeFolds(const std::vector<point>& pos, int n, point* where = nul
     {
         if (dot(cross(b - a, c - a), coarseNormal) <= 0)
         {
-            if (!nFolded && where)
-            {
-                *where = (1.0/3.0)*(a + b + c);
-            }
             ++nFolded;
         }
     };
