@@ -310,6 +310,8 @@ int main(int argc, char *argv[])
             );
         });
         pmsh::logSurfaceSizes(comm, surface);
+        const pmsh::projectionRepairSummary repair =
+            pmsh::logProjectionRepair(comm, surface.repair);
         stages.end();
 
         stages.begin("volume", "Stage 4: volume meshing (" + settings.volumeMesher + ")");
@@ -404,7 +406,7 @@ int main(int argc, char *argv[])
         pmsh::reportSummary
         (
             comm, runTime.globalPath(), settings, nCoarseCells, coarse.volumeMesher,
-            volume, nFineCells, quality, stages, estimate
+            volume, nFineCells, quality, stages, estimate, repair
         );
     }
     catch (const pmsh::collectiveFailure& e)

@@ -638,27 +638,201 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
         );
     }
 
-    const double v = enclosedVolume(s);
-    if (v < 0)
+    checkShellOrientation(s, fileName);
+}
+
+
+std::vector<pmsh::label> pmsh::stlShells(const stlSurface& s, label& nShells)
+{
+    // Union-find over the points: triangles sharing a point share a shell
+    std::vector<label> parent(s.points.size());
+    for (std::size_t i = 0; i < parent.size(); ++i)
     {
-        throw FatalError
-        (
-            msg()
-                << "STL file \"" << fileName << "\" is oriented inward: the"
-                << " volume it encloses is negative (" << v << ").\nIts"
-                << " triangle normals point into the solid: flip the normals"
-                << " (reverse the vertex order of every triangle)",
-            function
-        );
+        parent[i] = label(i);
     }
-    if (!(v > 0))
+    auto root = [&parent](label i)
     {
-        throw FatalError
+        while (parent[i] != i)
+        {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        return i;
+    };
+    for (const triFace& f : s.triangles)
+    {
+        for (int k = 1; k < 3; ++k)
+        {
+            const label a = root(f[0]);
+            const label b = root(f[k]);
+            if (a != b)
+            {
+                parent[std::max(a, b)] = std::min(a, b);
+            }
+        }
+    }
+
+    // Shells numbered in the order of their first triangle
+    std::unordered_map<label, label> shellOfRoot;
+    std::vector<label> shell(s.triangles.size());
+    for (std::size_t t = 0; t < s.triangles.size(); ++t)
+    {
+        shell[t] = shellOfRoot.emplace
         (
-            msg()
-                << "STL file \"" << fileName << "\" encloses no volume",
-            function
-        );
+            root(s.triangles[t][0]), label(shellOfRoot.size())
+        ).first->second;
+    }
+    nShells = label(shellOfRoot.size());
+    return shell;
+}
+
+
+double pmsh::windingNumber
+(
+    const stlSurface& s,
+    const std::vector<label>& triangles,
+    const point& x
+)
+{
+    // Sum of the solid angles of the triangles seen from x (Van Oosterom
+    // and Strackee), over 4 pi: +-1 inside a closed surface, 0 outside
+    double omega = 0;
+    for (label t : triangles)
+    {
+        const triFace& f = s.triangles[t];
+        const vector a = s.points[f[0]] - x;
+        const vector b = s.points[f[1]] - x;
+        const vector c = s.points[f[2]] - x;
+        const double la = std::sqrt(magSqr(a));
+        const double lb = std::sqrt(magSqr(b));
+        const double lc = std::sqrt(magSqr(c));
+        const double numerator = dot(a, cross(b, c));
+        const double denominator =
+            la*lb*lc + dot(a, b)*lc + dot(a, c)*lb + dot(b, c)*la;
+        omega += 2*std::atan2(numerator, denominator);
+    }
+    return omega/(4*M_PI);
+}
+
+
+void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileName)
+{
+    const char* function = "pmsh::checkShellOrientation";
+
+    label nShells = 0;
+    const std::vector<label> shell = stlShells(s, nShells);
+    std::vector<std::vector<label>> triangles(nShells);
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        triangles[shell[t]].push_back(t);
+    }
+
+    // The solids a shell is made of, for messages
+    auto solidsOf = [&](label sh)
+    {
+        std::vector<label> solids;
+        for (label t : triangles[sh])
+        {
+            solids.push_back(s.solid[t]);
+        }
+        std::sort(solids.begin(), solids.end());
+        solids.erase(std::unique(solids.begin(), solids.end()), solids.end());
+        std::string names;
+        for (label solid : solids)
+        {
+            names += (names.empty() ? "" : ", ") + s.solidNames[solid];
+        }
+        return (solids.size() > 1 ? "solids " : "solid ") + names;
+    };
+    // Where a shell is: a solid may hold several
+    auto extentOf = [&](label sh)
+    {
+        point lo = s.points[s.triangles[triangles[sh][0]][0]];
+        point hi = lo;
+        for (label t : triangles[sh])
+        {
+            for (label p : s.triangles[t])
+            {
+                for (int k = 0; k < 3; ++k)
+                {
+                    lo[k] = std::min(lo[k], s.points[p][k]);
+                    hi[k] = std::max(hi[k], s.points[p][k]);
+                }
+            }
+        }
+        return " (" + std::to_string(triangles[sh].size()) + " triangles between "
+            + stlPoint(lo) + " and " + stlPoint(hi) + ")";
+    };
+
+    for (label sh = 0; sh < nShells; ++sh)
+    {
+        // Volume about a point of the shell, for accuracy far from the origin
+        const point o = s.points[s.triangles[triangles[sh][0]][0]];
+        double v6 = 0;
+        for (label t : triangles[sh])
+        {
+            const triFace& f = s.triangles[t];
+            v6 += tetVolume6(o, s.points[f[0]], s.points[f[1]], s.points[f[2]]);
+        }
+        if (!(v6 != 0))
+        {
+            throw FatalError
+            (
+                msg()
+                    << "STL file \"" << fileName << "\": the closed surface of "
+                    << solidsOf(sh) << " encloses no volume",
+                function
+            );
+        }
+
+        // Nesting depth: the other shells around this one (shells do not
+        // cross, so any of its points tells)
+        const triFace& f = s.triangles[triangles[sh][0]];
+        const point x =
+            (1.0/3.0)*(s.points[f[0]] + s.points[f[1]] + s.points[f[2]]);
+        label depth = 0;
+        std::string around;
+        for (label other = 0; other < nShells; ++other)
+        {
+            if (other != sh && std::abs(windingNumber(s, triangles[other], x)) > 0.5)
+            {
+                ++depth;
+                around = solidsOf(other);
+            }
+        }
+
+        // The fluid lies inside the outermost shell and outside a shell
+        // nested in it: normals point out of the fluid
+        const bool inward = v6 < 0;
+        if (depth % 2 == 0 && inward)
+        {
+            throw FatalError
+            (
+                msg()
+                    << "STL file \"" << fileName << "\" is oriented inward: the"
+                    << " closed surface of " << solidsOf(sh) << extentOf(sh)
+                    << " encloses a negative volume (" << v6/6 << ").\nIts triangle normals"
+                    << " point into the solid: flip the normals (reverse the"
+                    << " vertex order of every triangle of "
+                    << solidsOf(sh) << ")",
+                function
+            );
+        }
+        if (depth % 2 == 1 && !inward)
+        {
+            throw FatalError
+            (
+                msg()
+                    << "STL file \"" << fileName << "\": the closed surface of "
+                    << solidsOf(sh) << extentOf(sh) << " lies inside that of " << around
+                    << " but its normals point out of it, into the fluid"
+                    << " around it.\nA body in the flow is a hole in the"
+                    << " domain: its normals must point out of the fluid, into"
+                    << " the body. Flip the normals of " << solidsOf(sh)
+                    << " (reverse the vertex order of each of its triangles)",
+                function
+            );
+        }
     }
 }
 

@@ -171,6 +171,29 @@ void pmsh::logSurfaceSizes(const Communicator& comm, const FineSurface& surface)
 }
 
 
+pmsh::projectionRepairSummary pmsh::logProjectionRepair
+(
+    const Communicator& comm,
+    const projectionRepairStats& repair
+)
+{
+    projectionRepairSummary total;
+    total.nPointsOff = comm.sum(std::int64_t(repair.nPointsOff));
+    total.maxDistance = comm.max(repair.maxDistance);
+    const double sumDistance = comm.sum(repair.sumDistance);
+    total.meanDistance = total.nPointsOff ? sumDistance/total.nPointsOff : 0;
+    if (total.nPointsOff)
+    {
+        Info()
+            << "    refined points left off the geometry (their projection"
+            << " folded the surface): " << total.nPointsOff
+            << ", distance from the geometry max " << total.maxDistance
+            << ", mean " << total.meanDistance << '\n';
+    }
+    return total;
+}
+
+
 std::string pmsh::failedSurfaceFile(const std::string& caseDir, int rank)
 {
     return caseDir + "/postProcessing/pmshFoam/failedPartition" + std::to_string(rank) + ".stl";
@@ -331,7 +354,8 @@ void pmsh::reportSummary
     globalLabel nFineCells,
     const meshQualityReport& quality,
     const stageLog& stages,
-    const memoryEstimate& estimate
+    const memoryEstimate& estimate,
+    const projectionRepairSummary& repair
 )
 {
     const double total = stages.total();
@@ -428,6 +452,9 @@ void pmsh::reportSummary
         << "  \"volumeMesher\": " << jsonString(settings.volumeMesher) << ",\n"
         << "  \"coarseCells\": " << coarseCells << ",\n"
         << "  \"fineCells\": " << nFineCells << ",\n"
+        << "  \"pointsOffGeometry\": " << repair.nPointsOff << ",\n"
+        << "  \"maxDistanceOffGeometry\": " << repair.maxDistance << ",\n"
+        << "  \"meanDistanceOffGeometry\": " << repair.meanDistance << ",\n"
         << "  \"fineCellsPerRank\": " << jsonArray(cellsPerRank) << ",\n"
         << "  \"volumeMesherPerRank\": [";
     for (std::size_t i = 0; i < backendPerRank.size(); ++i)

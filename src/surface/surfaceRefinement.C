@@ -5,6 +5,8 @@
 #include "matchByPoints.H"
 
 #include <algorithm>
+#include <cmath>
+#include <memory>
 #include <tuple>
 #include <unordered_map>
 
@@ -86,6 +88,7 @@ public:
 
     int n() const { return n_; }
     point& at(int i, int j) { return pos_[j*(n_ + 1) + i]; }
+    const std::vector<point>& positions() const { return pos_; }
 
     // Fill positions level by level: each new point is the midpoint of the
     // coarser edge it splits, projected through `project(i, j, p)`.
@@ -136,8 +139,360 @@ private:
 };
 
 
+//- Fill the lattice of the face with sorted points v: points on a boundary
+//  edge projected onto its surface(s) unless edgeOff(a, b), points inside
+//  a boundary face onto its surface unless insideOff, the rest linear.
+template<class EdgeOff>
+void fillFace
+(
+    faceLattice& lattice,
+    const CoarseMesh& coarse,
+    const boundaryEdgeSurfaces& edgeSurfaces,
+    const Geometry* geometry,
+    const triFace& v,
+    label faceSurface,
+    bool insideOff,
+    const EdgeOff& edgeOff
+)
+{
+    const int n = lattice.n();
+    auto project = [&](int i, int j, const point& p) -> point
+    {
+        if (!geometry)
+        {
+            return p;
+        }
+        const int k = n - i - j;
+        if (i != 0 && j != 0 && k != 0)
+        {
+            return faceSurface >= 0 && !insideOff
+                ? geometry->projectToSurface(p, faceSurface) : p;
+        }
+        const label a = (k == 0) ? v[1] : v[0];
+        const label b = (j == 0) ? v[1] : v[2];
+        label s1, s2;
+        if (!edgeSurfaces.find(a, b, s1, s2) || edgeOff(a, b))
+        {
+            return p;   // an edge inside the domain, or left linear
+        }
+        return s1 == s2
+            ? geometry->projectToSurface(p, s1)
+            : geometry->projectToEdge(p, s1, s2);
+    };
+    lattice.fill(coarse.points[v[0]], coarse.points[v[1]], coarse.points[v[2]], project);
+}
+
+
+//- Refined triangles of a lattice (points v0 < v1 < v2 at `pos`) that
+//  turned against the coarse face (v0, v1, v2).
+label countLatticeFolds(const std::vector<point>& pos, int n)
+{
+    auto P = [&](int i, int j) -> const point& { return pos[j*(n + 1) + i]; };
+    const vector coarseNormal =
+        cross(P(n, 0) - P(0, 0), P(0, n) - P(0, 0));
+    label nFolded = 0;
+    auto test = [&](const point& a, const point& b, const point& c)
+    {
+        if (dot(cross(b - a, c - a), coarseNormal) <= 0)
+        {
+            ++nFolded;
+        }
+    };
+    for (int j = 0; j < n; ++j)
+    {
+        for (int i = 0; i + j < n; ++i)
+        {
+            test(P(i, j), P(i + 1, j), P(i, j + 1));
+            if (i + j + 1 < n)
+            {
+                test(P(i + 1, j), P(i + 1, j + 1), P(i, j + 1));
+            }
+        }
+    }
+    return nFolded;
+}
+
+
+//- The three edges of the face with sorted points v.
+std::array<foldRepair::edgeKey, 3> edgesOf(const triFace& v)
+{
+    return {{{v[0], v[1]}, {v[1], v[2]}, {v[0], v[2]}}};
+}
+
 } // End anonymous namespace
 
+
+// * * * * * * * * * * * * * * * * foldRepair  * * * * * * * * * * * * * * * //
+
+pmsh::foldRepair::foldRepair
+(
+    const CoarseMesh& coarse,
+    const boundaryEdgeSurfaces& edgeSurfaces,
+    const Geometry* geometry,
+    int levels
+)
+:
+    coarse_(coarse),
+    edgeSurfaces_(edgeSurfaces),
+    geometry_(geometry),
+    levels_(levels)
+{
+    for (const coarseBoundaryFace& b : coarse.boundary)
+    {
+        const faceKey f = sortedFace(b.v);
+        boundarySurface_[f] = {b.surface, !sameOrientation(f, b.v)};
+    }
+    // Every face of every tet that holds a boundary edge: all ranks hold
+    // the whole coarse mesh, so all see the same faces around an edge
+    for (const tetCell& t : coarse.tets)
+    {
+        for (int fi = 0; fi < 4; ++fi)
+        {
+            const faceKey f = sortedFace(tetFace(t, fi));
+            for (const edgeKey& e : edgesOf(f))
+            {
+                label s1, s2;
+                if (edgeSurfaces.find(e[0], e[1], s1, s2))
+                {
+                    facesAround_[e].push_back(f);
+                }
+            }
+        }
+    }
+    for (auto& around : facesAround_)
+    {
+        std::vector<faceKey>& faces = around.second;
+        std::sort(faces.begin(), faces.end());
+        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    }
+}
+
+
+pmsh::label pmsh::foldRepair::surfaceOf(const faceKey& f) const
+{
+    const auto it = boundarySurface_.find(f);
+    return it == boundarySurface_.end() ? -1 : it->second.first;
+}
+
+
+std::array<pmsh::triFace, 2> pmsh::foldRepair::boundaryFacesOf(label p, label q) const
+{
+    std::array<triFace, 2> faces{};
+    int nFound = 0;
+    const auto it = facesAround_.find(sortedEdge(p, q));
+    if (it != facesAround_.end())
+    {
+        // Sorted, so the lower triple comes first
+        for (const faceKey& f : it->second)
+        {
+            if (nFound < 2 && surfaceOf(f) >= 0)
+            {
+                faces[nFound++] = f;
+            }
+        }
+    }
+    if (nFound != 2)
+    {
+        throw FatalError
+        (
+            msg() << "Coarse edge " << p << '-' << q << " is not an edge of"
+                << " two coarse boundary faces",
+            "pmsh::foldRepair::boundaryFacesOf"
+        );
+    }
+    return faces;
+}
+
+
+bool pmsh::foldRepair::edgeUnprojected(const edgeKey& e, int round) const
+{
+    if (round <= 0)
+    {
+        return false;
+    }
+    const auto key = std::make_pair(round, e);
+    const auto memo = edgeMemo_.find(key);
+    if (memo != edgeMemo_.end())
+    {
+        return memo->second;
+    }
+    bool off = edgeUnprojected(e, round - 1) || foldsAcross(e, round);
+    const auto around = facesAround_.find(e);
+    if (!off && around != facesAround_.end())
+    {
+        for (const faceKey& f : around->second)
+        {
+            if (folds(f, round))
+            {
+                off = true;
+                break;
+            }
+        }
+    }
+    edgeMemo_[key] = off;
+    return off;
+}
+
+
+bool pmsh::foldRepair::faceUnprojected(const faceKey& f, int round) const
+{
+    return round > 0 && (faceUnprojected(f, round - 1) || folds(f, round));
+}
+
+
+bool pmsh::foldRepair::inputsChanged(const faceKey& f, int round) const
+{
+    if (round <= 0)
+    {
+        return false;
+    }
+    for (const edgeKey& e : edgesOf(f))
+    {
+        if
+        (
+            facesAround_.count(e)
+         && edgeUnprojected(e, round) != edgeUnprojected(e, round - 1)
+        )
+        {
+            return true;
+        }
+    }
+    return surfaceOf(f) >= 0
+        && faceUnprojected(f, round) != faceUnprojected(f, round - 1);
+}
+
+
+bool pmsh::foldRepair::folds(const faceKey& f, int round) const
+{
+    // A boundary face whose surface still folds across one of its edges
+    // after that edge was left linear: the face itself must go linear
+    if (surfaceOf(f) >= 0)
+    {
+        for (const edgeKey& e : edgesOf(f))
+        {
+            if (edgeUnprojected(e, round - 1) && foldsAcross(e, round))
+            {
+                return true;
+            }
+        }
+    }
+    return latticeFolds(f, round);
+}
+
+
+bool pmsh::foldRepair::latticeFolds(const faceKey& f, int round) const
+{
+    // With the previous round's inputs unchanged the answer is the same
+    if (round > 1 && !inputsChanged(f, round - 1))
+    {
+        return latticeFolds(f, round - 1);
+    }
+    const auto key = std::make_pair(round, f);
+    const auto memo = foldsMemo_.find(key);
+    if (memo != foldsMemo_.end())
+    {
+        return memo->second;
+    }
+    const bool result =
+        countLatticeFolds(refinedFace(f, round - 1), 1 << levels_) > 0;
+    foldsMemo_[key] = result;
+    return result;
+}
+
+
+bool pmsh::foldRepair::foldsAcross(const edgeKey& e, int round) const
+{
+    label s1, s2;
+    if (!geometry_ || !edgeSurfaces_.find(e[0], e[1], s1, s2) || s1 != s2)
+    {
+        return false;   // a feature edge may be as sharp as it likes
+    }
+    // With the previous round's decisions unchanged the answer is the same
+    if (round > 1)
+    {
+        bool changed = false;
+        for (const faceKey& f : boundaryFacesOf(e[0], e[1]))
+        {
+            changed = changed || inputsChanged(f, round - 1);
+        }
+        if (!changed)
+        {
+            return foldsAcross(e, round - 1);
+        }
+    }
+    const auto key = std::make_pair(round, e);
+    const auto memo = acrossMemo_.find(key);
+    if (memo != acrossMemo_.end())
+    {
+        return memo->second;
+    }
+
+    // The outward unit normal of the fine triangle at segment m of the
+    // edge (counted from e[0]) in each boundary face, and of the coarse face
+    const int n = 1 << levels_;
+    std::array<std::vector<vector>, 2> normals;
+    std::array<vector, 2> coarseNormal;
+    const std::array<triFace, 2> faces = boundaryFacesOf(e[0], e[1]);
+    auto unit = [](const vector& v, bool flip)
+    {
+        return (flip ? -1.0 : 1.0)/std::sqrt(magSqr(v))*v;
+    };
+    for (int side = 0; side < 2; ++side)
+    {
+        const faceKey& v = faces[side];
+        const std::vector<point> pos = refinedFace(v, round - 1);
+        auto P = [&](int i, int j) -> const point& { return pos[j*(n + 1) + i]; };
+        const bool flip = boundarySurface_.at(v).second;
+        coarseNormal[side] = unit(cross(P(n, 0) - P(0, 0), P(0, n) - P(0, 0)), flip);
+        for (int m = 0; m < n; ++m)
+        {
+            // Lattice triangle (i, j), (i + 1, j), (i, j + 1) on the edge
+            int i = 0, j = 0;
+            if (e[0] == v[0] && e[1] == v[1]) { i = m; j = 0; }
+            else if (e[0] == v[1]) { i = n - m - 1; j = m; }
+            else { i = 0; j = m; }
+            normals[side].push_back
+            (
+                unit(cross(P(i + 1, j) - P(i, j), P(i, j + 1) - P(i, j)), flip)
+            );
+        }
+    }
+    // Folded onto itself: the two fine triangles nearly back to back (less
+    // than about 25 degrees between them), clearly sharper than the coarse faces
+    // (where the coarse surface is that sharp already, as round a thin
+    // part, linear points would not help)
+    const double coarseCos = dot(coarseNormal[0], coarseNormal[1]);
+    bool result = false;
+    for (int m = 0; m < n && !result; ++m)
+    {
+        const double fineCos = dot(normals[0][m], normals[1][m]);
+        result = fineCos < -0.9 && fineCos < coarseCos - 0.01;
+    }
+    acrossMemo_[key] = result;
+    return result;
+}
+
+
+std::vector<pmsh::point> pmsh::foldRepair::refinedFace(const faceKey& v, int round) const
+{
+    faceLattice lattice(levels_);
+    fillFace
+    (
+        lattice, coarse_, edgeSurfaces_, geometry_, v, surfaceOf(v),
+        faceUnprojected(v, round),
+        [&](label a, label b) { return edgeUnprojected(sortedEdge(a, b), round); }
+    );
+    return lattice.positions();
+}
+
+
+std::vector<pmsh::point> pmsh::foldRepair::refinedFace(const triFace& f) const
+{
+    return refinedFace(sortedFace(f), rounds);
+}
+
+
+// * * * * * * * * * * * * * * * * refineSurface  * * * * * * * * * * * * * //
 
 pmsh::FineSurface pmsh::refineSurface
 (
@@ -145,7 +500,8 @@ pmsh::FineSurface pmsh::refineSurface
     const coarsePartSurface& partSurface,
     const boundaryEdgeSurfaces& edgeSurfaces,
     const Geometry* geometry,
-    int levels
+    int levels,
+    bool repairFolds
 )
 {
     if (levels < 0 || levels > 15)
@@ -176,6 +532,65 @@ pmsh::FineSurface pmsh::refineSurface
     faceLattice lattice(levels);
     std::vector<label> latticePoint((n + 1)*(n + 1));
 
+    std::unique_ptr<foldRepair> repair;
+    if (geometry && repairFolds)
+    {
+        repair.reset(new foldRepair(coarse, edgeSurfaces, geometry, levels));
+    }
+
+    // The points a repair left off the geometry, and their distance from
+    // it: points inside a boundary face by the part holding the face,
+    // points on a boundary edge by the part holding the edge's lower
+    // boundary face (so every point counts once over all parts)
+    auto distanceOff = [&](const point& p, label s1, label s2)
+    {
+        const double d1 = magSqr(p - geometry->projectToSurface(p, s1));
+        const double d2 =
+            s2 == s1 ? d1 : magSqr(p - geometry->projectToSurface(p, s2));
+        return std::sqrt(std::min(d1, d2));
+    };
+    auto countOff = [&](const point& p, label s1, label s2)
+    {
+        const double d = distanceOff(p, s1, s2);
+        ++fine.repair.nPointsOff;
+        fine.repair.sumDistance += d;
+        fine.repair.maxDistance = std::max(fine.repair.maxDistance, d);
+    };
+    auto addRepairStats = [&](const triFace& v, label faceSurface, const std::vector<point>& pos)
+    {
+        auto P = [&](int i, int j) -> const point& { return pos[j*(n + 1) + i]; };
+        if (repair->faceUnprojected(v))
+        {
+            for (int j = 1; j < n; ++j)
+            {
+                for (int i = 1; i + j < n; ++i)
+                {
+                    countOff(P(i, j), faceSurface, faceSurface);
+                }
+            }
+        }
+        for (int e = 0; e < 3; ++e)
+        {
+            const label a = v[e == 1 ? 1 : 0];
+            const label b = v[e == 0 ? 1 : 2];
+            label s1, s2;
+            if
+            (
+                !edgeSurfaces.find(a, b, s1, s2)
+             || !repair->edgeUnprojected(a, b)
+             || repair->boundaryFacesOf(a, b)[0] != v
+            )
+            {
+                continue;
+            }
+            for (int m = 1; m < n; ++m)
+            {
+                // Edge (v0, v1): j = 0; (v1, v2): i + j = n; (v0, v2): i = 0
+                countOff(e == 0 ? P(m, 0) : e == 1 ? P(n - m, m) : P(0, m), s1, s2);
+            }
+        }
+    };
+
     for (label facei = 0; facei < nCoarseFaces; ++facei)
     {
         const triFace& f = partSurface.faces[facei];
@@ -183,31 +598,24 @@ pmsh::FineSurface pmsh::refineSurface
         std::sort(v.begin(), v.end());
         const label faceSurface = partSurface.surface[facei];
 
-        // Projection of the point at lattice (i, j): by the coarse entity
-        // the point lies on (the zero coordinates say which)
-        auto project = [&](int i, int j, const point& p) -> point
+        std::vector<point> positions;
+        if (repair)
         {
-            if (!geometry)
+            positions = repair->refinedFace(v);
+            if (faceSurface >= 0)
             {
-                return p;
+                addRepairStats(v, faceSurface, positions);
             }
-            const int k = n - i - j;
-            if (i != 0 && j != 0 && k != 0)
-            {
-                return faceSurface >= 0 ? geometry->projectToSurface(p, faceSurface) : p;
-            }
-            const label a = (k == 0) ? v[1] : v[0];
-            const label b = (j == 0) ? v[1] : v[2];
-            label s1, s2;
-            if (!edgeSurfaces.find(a, b, s1, s2))
-            {
-                return p;   // an edge inside the domain
-            }
-            return s1 == s2
-                ? geometry->projectToSurface(p, s1)
-                : geometry->projectToEdge(p, s1, s2);
-        };
-        lattice.fill(coarse.points[v[0]], coarse.points[v[1]], coarse.points[v[2]], project);
+        }
+        else
+        {
+            fillFace
+            (
+                lattice, coarse, edgeSurfaces, geometry, v, faceSurface, false,
+                [](label, label) { return false; }
+            );
+            positions = lattice.positions();
+        }
 
         for (int j = 0; j <= n; ++j)
         {
@@ -229,7 +637,7 @@ pmsh::FineSurface pmsh::refineSurface
                         continue;
                     }
                 }
-                fine.points.push_back(lattice.at(i, j));
+                fine.points.push_back(positions[j*(n + 1) + i]);
                 fine.ids.push_back(id);
                 latticePoint[j*(n + 1) + i] = pointi;
             }
@@ -313,12 +721,45 @@ pmsh::FineSurface pmsh::refinePartSurface
     const label nFolded = countFoldedTriangles(coarse, partSurface, fine, levels);
     if (nFolded > 0)
     {
+        // Where: the first folded triangle and its patch
+        const std::size_t trianglesPerFace = std::size_t(1) << (2*levels);
+        std::string where;
+        for (std::size_t facei = 0; facei < partSurface.faces.size() && where.empty(); ++facei)
+        {
+            const triFace& f = partSurface.faces[facei];
+            const vector coarseNormal = cross
+            (
+                coarse.points[f[1]] - coarse.points[f[0]],
+                coarse.points[f[2]] - coarse.points[f[0]]
+            );
+            for (std::size_t t = 0; t < trianglesPerFace && where.empty(); ++t)
+            {
+                const triFace& tri = fine.triangles[facei*trianglesPerFace + t];
+                const point& a = fine.points[tri[0]];
+                const point& b = fine.points[tri[1]];
+                const point& c = fine.points[tri[2]];
+                if (dot(cross(b - a, c - a), coarseNormal) <= 0)
+                {
+                    const label region = partSurface.region[facei];
+                    where = "at " + str((1.0/3.0)*(a + b + c)) + " on "
+                      + (
+                            isInterfaceRegion(region)
+                          ? "the interface with part " + std::to_string(-region - 1)
+                          : "patch " + coarse.patches[region].name
+                        );
+                }
+            }
+        }
         throw FatalError
         (
             msg() << nFolded << " refined surface triangles of part " << part
-                << " folded over when projected onto the geometry: the coarse"
-                << " mesh is too coarse for the curvature of the geometry.\n"
-                << "Reduce maxCellSize in system/pmshDict.",
+                << " folded over when projected onto the geometry, the first "
+                << where << ", even with the refined points of the "
+                << foldRepair::rounds << " rings of coarse faces around them"
+                << " left off the geometry: the geometry there has features"
+                << " much smaller than the coarse cells.\nReduce maxCellSize"
+                << " in system/pmshDict, or remove the small features there"
+                << " from the geometry",
             "refinePartSurface"
         );
     }

@@ -900,3 +900,50 @@ TEST(csgGeometry, periodicPairsStopInsteadOfBeingIgnored)
     );
     EXPECT_FATAL(Geometry::New(f), "cannot honour yet");
 }
+
+
+TEST(stlReader, bodyInABoxIsTwoShellsEachPointingOutOfTheFluid)
+{
+    const std::string f = testDataDir() + "/geometry/sphereInBox.stl";
+    const stlSurface s = readStl(f);
+    label nShells = 0;
+    const std::vector<label> shell = stlShells(s, nShells);
+    ASSERT_EQ(nShells, 2);
+    std::vector<label> bodyTriangles;
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        // The box's solids are one shell, the body the other
+        EXPECT_EQ(shell[t], s.solidNames[s.solid[t]] == "body" ? 1 : 0);
+        if (shell[t] == 1) bodyTriangles.push_back(t);
+    }
+    // The body points into itself: winding number -1 inside it
+    EXPECT_NEAR(windingNumber(s, bodyTriangles, {0, 0, 0}), -1, 1e-9);
+    EXPECT_NEAR(windingNumber(s, bodyTriangles, {2, 0, 0}), 0, 1e-9);
+    EXPECT_NO_THROW(checkStl(s, f));
+
+    auto flipSolids = [&](const std::vector<std::string>& names)
+    {
+        stlSurface flipped = s;
+        for (label t = 0; t < flipped.nTriangles(); ++t)
+        {
+            const std::string& name = flipped.solidNames[flipped.solid[t]];
+            if (std::find(names.begin(), names.end(), name) != names.end())
+            {
+                std::swap(flipped.triangles[t][1], flipped.triangles[t][2]);
+            }
+        }
+        return flipped;
+    };
+    // The body's normals into the fluid: its total volume is still
+    // positive, only the shell check sees it
+    {
+        const std::string m = errorOf([&]{ checkStl(flipSolids({"body"}), f); });
+        EXPECT_NE(m.find("sphereInBox.stl\": the closed surface of solid body (1280 triangles between ("), std::string::npos) << m;
+        EXPECT_NE(m.find(") lies inside that of solids inlet, outlet, sides"), std::string::npos) << m;
+        EXPECT_NE(m.find("Flip the normals of solid body"), std::string::npos) << m;
+    }
+    {
+        const std::string m = errorOf([&]{ checkStl(flipSolids({"inlet", "outlet", "sides"}), f); });
+        EXPECT_NE(m.find("is oriented inward: the closed surface of solids inlet, outlet, sides (48 triangles"), std::string::npos) << m;
+    }
+}

@@ -5,6 +5,7 @@
 #include "Geometry.H"
 #include "meshPatch.H"
 #include "surfaceChecks.H"
+#include "testPaths.H"
 #include "pmshError.H"
 
 #include <gtest/gtest.h>
@@ -314,21 +315,205 @@ public:
 } // End anonymous namespace
 
 
-TEST(surfaceRefinement, projectionThatFoldsTheSurfaceIsAFatalErrorSayingWhatToDo)
+TEST(surfaceRefinement, projectionThatFoldsEverywhereIsRepairedByLeavingThePointsOnTheCoarseFaces)
 {
     const CoarseMesh m = octahedron();
     const analyticSphere sphere;
-    EXPECT_NO_THROW(refinePartSurface(m, {}, 0, &sphere, 2));
+    const FineSurface onSphere = refinePartSurface(m, {}, 0, &sphere, 2);
+    EXPECT_EQ(onSphere.repair.nPointsOff, 0);
 
     const foldingGeometry folding;
-    try
+    const coarsePartSurface ps = partitionSurface(m, {}, 0);
+    const boundaryEdgeSurfaces edges(m);
+    const FineSurface folded = refineSurface(m, ps, edges, &folding, 2, false);
+    EXPECT_GT(countFoldedTriangles(m, ps, folded, 2), 0);
+
+    const FineSurface repaired = refinePartSurface(m, {}, 0, &folding, 2);
+    EXPECT_EQ(countFoldedTriangles(m, ps, repaired, 2), 0);
+    // Every new point stays on its coarse face: 8 faces of 4^2 triangles
+    // have 66 points, 6 of them coarse
+    EXPECT_EQ(repaired.repair.nPointsOff, 60);
+    // ... and the furthest, (3, 1, 0)/4 of a face, is 1 + its radius from
+    // where the projection sends it
+    EXPECT_NEAR(repaired.repair.maxDistance, 1 + std::sqrt(10.0)/4, 1e-12);
+}
+
+
+namespace
+{
+
+// The unit sphere, except that points within 25 degrees of the direction
+// (0, 1, 1) go through the centre: a fold around coarse edge 3-5 (between
+// +y and +z), which the boundary faces of both parts of splitByX share
+class locallyFoldingSphere : public analyticSphere
+{
+public:
+    point projectToSurface(const point& p, label) const override
     {
-        refinePartSurface(m, {}, 0, &folding, 2);
-        FAIL() << "expected FatalError";
+        const point q = (1.0/std::sqrt(magSqr(p)))*p;
+        const double cosAngle = (q[1] + q[2])/std::sqrt(2.0);
+        return cosAngle > std::cos(25*M_PI/180) ? (-1.0)*q : q;
     }
-    catch (const FatalError& e)
+};
+
+std::map<barycentricId, point> pointsById(const FineSurface& s)
+{
+    std::map<barycentricId, point> byId;
+    for (std::size_t i = 0; i < s.ids.size(); ++i)
     {
-        EXPECT_NE(std::string(e.what()).find("folded"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("maxCellSize"), std::string::npos) << e.what();
+        byId[s.ids[i]] = s.points[i];
     }
+    return byId;
+}
+
+} // End anonymous namespace
+
+
+TEST(surfaceRefinement, localFoldIsRepairedLocallyAndOnlyThere)
+{
+    const CoarseMesh m = octahedron();
+    const locallyFoldingSphere geometry;
+    const coarsePartSurface ps = partitionSurface(m, {}, 0);
+    const boundaryEdgeSurfaces edges(m);
+    for (int levels : {1, 2, 3})
+    {
+        SCOPED_TRACE("levels " + std::to_string(levels));
+        const FineSurface folded = refineSurface(m, ps, edges, &geometry, levels, false);
+        EXPECT_GT(countFoldedTriangles(m, ps, folded, levels), 0);
+
+        const FineSurface repaired = refinePartSurface(m, {}, 0, &geometry, levels);
+        EXPECT_EQ(countFoldedTriangles(m, ps, repaired, levels), 0);
+        EXPECT_GT(repaired.repair.nPointsOff, 0);
+        // Faces away from the fold (x < 0 or z < 0 ...) keep their points
+        // on the sphere: only the faces at edge 3-5 and their neighbours
+        // are touched
+        label onSphere = 0;
+        for (const point& p : repaired.points)
+        {
+            onSphere += std::abs(magSqr(p) - 1) < 1e-12;
+        }
+        EXPECT_EQ(label(repaired.points.size()) - onSphere, repaired.repair.nPointsOff);
+        EXPECT_LT(repaired.repair.nPointsOff, label(repaired.points.size())/2);
+    }
+}
+
+
+TEST(surfaceRefinement, foldRepairDecidesAnInterfaceEdgeAlikeOnBothSidesAndAsInSerial)
+{
+    // Edge 3-5's boundary faces are in different parts: each part decides
+    // from its own copy of the coarse mesh, and must leave the same points
+    // off the geometry, bit for bit, as the other part and the serial run
+    const CoarseMesh m = octahedron();
+    const std::vector<label> part = splitByX(m);
+    const locallyFoldingSphere geometry;
+    for (int levels : {1, 2})
+    {
+        SCOPED_TRACE("levels " + std::to_string(levels));
+        const FineSurface s0 = refinePartSurface(m, part, 0, &geometry, levels);
+        const FineSurface s1 = refinePartSurface(m, part, 1, &geometry, levels);
+        const FineSurface serial = refinePartSurface(m, {}, 0, &geometry, levels);
+        const auto p0 = pointsById(s0);
+        const auto p1 = pointsById(s1);
+        const auto pSerial = pointsById(serial);
+        label nSharedOff = 0;
+        for (const auto& [id, x] : p0)
+        {
+            const auto it = p1.find(id);
+            if (it != p1.end())
+            {
+                EXPECT_EQ(std::memcmp(&x, &it->second, sizeof(point)), 0);
+                nSharedOff += std::abs(magSqr(x) - 1) > 1e-12;
+            }
+        }
+        EXPECT_GT(nSharedOff, 0) << "no shared point was left off: the test tests nothing";
+        for (const auto* p : {&p0, &p1})
+        {
+            for (const auto& [id, x] : *p)
+            {
+                const auto it = pSerial.find(id);
+                if (it != pSerial.end())
+                {
+                    EXPECT_EQ(std::memcmp(&x, &it->second, sizeof(point)), 0);
+                }
+            }
+        }
+        // Every point left off is counted by one part
+        EXPECT_EQ
+        (
+            s0.repair.nPointsOff + s1.repair.nPointsOff, serial.repair.nPointsOff
+        );
+    }
+}
+
+
+namespace
+{
+
+// Fine edges across which the two triangles are nearly back to back (their
+// normals more than 155 degrees apart) where their coarse faces are not:
+// the surface folds onto itself there
+label edgesFoldedOntoThemselves
+(
+    const CoarseMesh& m,
+    const coarsePartSurface& ps,
+    const FineSurface& s,
+    int levels
+)
+{
+    auto unitNormal = [](const point& a, const point& b, const point& c)
+    {
+        const vector n = cross(b - a, c - a);
+        return (1/std::sqrt(magSqr(n)))*n;
+    };
+    const std::size_t perFace = std::size_t(1) << (2*levels);
+    std::map<std::pair<label, label>, std::vector<std::pair<vector, vector>>> normalsOfEdge;
+    for (std::size_t ti = 0; ti < s.triangles.size(); ++ti)
+    {
+        const triFace& t = s.triangles[ti];
+        const triFace& f = ps.faces[ti/perFace];
+        const vector n = unitNormal(s.points[t[0]], s.points[t[1]], s.points[t[2]]);
+        const vector nc = unitNormal(m.points[f[0]], m.points[f[1]], m.points[f[2]]);
+        for (int k = 0; k < 3; ++k)
+        {
+            const label a = t[k];
+            const label b = t[(k + 1) % 3];
+            normalsOfEdge[{std::min(a, b), std::max(a, b)}].push_back({n, nc});
+        }
+    }
+    label nFolded = 0;
+    for (const auto& e : normalsOfEdge)
+    {
+        if (e.second.size() == 2)
+        {
+            const double fineCos = dot(e.second[0].first, e.second[1].first);
+            const double coarseCos = dot(e.second[0].second, e.second[1].second);
+            nFolded += fineCos < -0.9 && fineCos < coarseCos - 0.01;
+        }
+    }
+    return nFolded;
+}
+
+} // End anonymous namespace
+
+
+TEST(surfaceRefinement, thinBodyWhoseSurfaceFoldsOntoItselfAcrossCoarseEdgesIsRepaired)
+{
+    // A needle thinner than the coarse cells: no fine triangle turns
+    // against its own coarse face, yet projected edge midpoints land beyond
+    // the neighbouring face's triangles (Netgen: "boundary mesh is
+    // overlapping")
+    const auto g = Geometry::New(testDataDir() + "/geometry/needleInBox.stl");
+    const CoarseMesh m = g->coarseMesh(coarseMeshParameters(2.5, 0.3));
+    const coarsePartSurface ps = partitionSurface(m, {}, 0);
+    const boundaryEdgeSurfaces edges(m);
+    const FineSurface folded = refineSurface(m, ps, edges, g.get(), 1, false);
+    EXPECT_EQ(countFoldedTriangles(m, ps, folded, 1), 0);
+    EXPECT_GT(edgesFoldedOntoThemselves(m, ps, folded, 1), 0);
+
+    const FineSurface repaired = refinePartSurface(m, {}, 0, g.get(), 1);
+    EXPECT_EQ(edgesFoldedOntoThemselves(m, ps, repaired, 1), 0);
+    EXPECT_GT(repaired.repair.nPointsOff, 0);
+    // A few points, off by less than the needle's radius
+    EXPECT_LT(repaired.repair.nPointsOff, 20);
+    EXPECT_LT(repaired.repair.maxDistance, 0.03);
 }

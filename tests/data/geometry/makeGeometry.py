@@ -8,6 +8,18 @@ themselves, in a temporary directory.
   sphereBinary.stl  the same triangles, binary
   box.stl           box [0,2]x[0,1]x[0,1], faces split 2x2, ascii, two
                     solids: "inlet" (x = 0) and "walls" (the rest)
+  sphereInBox.stl   external flow: box [-5,5]^3 (solids inlet x = -5,
+                    outlet x = 5, sides) around a sphere of radius 0.5
+                    (icosphere, 3 subdivisions, solid "body") whose
+                    triangles point into it, out of the fluid
+  cylinderInBox.stl the same box around a CAD-like body: a cylinder of
+                    radius 0.5 and length 2 along x, tessellated as CAD
+                    exporters do (sides as long strips, caps as fans of
+                    thin triangles), 90 degree edges, inner orientation
+  needleInBox.stl   the same box around a needle: a capsule of radius 0.03
+                    and length 1.06 along x (16 segments round), thinner
+                    than the coarse cells, so that projection folds the
+                    refined surface onto itself unless repaired
 
 Coordinates are float32 values (written exactly in ascii), so the ascii and
 binary spheres hold bit-identical points."""
@@ -128,6 +140,91 @@ def box(nx, ny, nz, lx, ly, lz):
     return v, tris
 
 
+def flipped(f):
+    return [(a, c, b) for a, b, c in f]
+
+
+def cad_cylinder(segments, radius, x0, x1):
+    """A closed cylinder along x as CAD exporters tessellate it: each side
+    strip one quad (two long thin triangles), each cap a fan from its first
+    rim point (thin slivers), outward."""
+    v = []
+    for x in (x0, x1):
+        for i in range(segments):
+            a = 2 * math.pi * i / segments
+            v.append((f32(x), f32(radius * math.cos(a)), f32(radius * math.sin(a))))
+    f = []
+    for i in range(segments):
+        j = (i + 1) % segments
+        # outward: the rim runs counter-clockwise seen from +x
+        f.append((i, segments + j, segments + i))
+        f.append((i, j, segments + j))
+    for i in range(1, segments - 1):
+        f.append((0, i + 1, i))                                 # x0 cap, -x
+        f.append((segments, segments + i, segments + i + 1))   # x1 cap, +x
+    return v, f
+
+
+def capsule(segments, radius, x0, x1):
+    """A closed capsule along x (a cylinder with hemispherical ends, poles
+    at its tips), outward."""
+    half = segments // 2
+    profile = []    # (x, r) from the x0 tip to the x1 tip
+    for k in range(half + 1):
+        a = math.pi / 2 * k / half
+        profile.append((x0 - radius * math.cos(a), radius * math.sin(a)))
+    for k in range(half + 1):
+        a = math.pi / 2 * k / half
+        profile.append((x1 + radius * math.sin(a), radius * math.cos(a)))
+    v = [(profile[0][0], 0.0, 0.0)]
+    rings = []
+    for x, r in profile[1:-1]:
+        rings.append(len(v))
+        for i in range(segments):
+            a = 2 * math.pi * i / segments
+            v.append((x, r * math.cos(a), r * math.sin(a)))
+    v.append((profile[-1][0], 0.0, 0.0))
+    v = [tuple(f32(c) for c in p) for p in v]
+    last = len(v) - 1
+    f = []
+    for i in range(segments):
+        j = (i + 1) % segments
+        f.append((0, rings[0] + j, rings[0] + i))
+        f.append((last, rings[-1] + i, rings[-1] + j))
+    for r0, r1 in zip(rings[:-1], rings[1:]):
+        for i in range(segments):
+            j = (i + 1) % segments
+            f.append((r0 + i, r0 + j, r1 + j))
+            f.append((r0 + i, r1 + j, r1 + i))
+    if volume(v, f) < 0:
+        f = flipped(f)
+    return v, f
+
+
+def body_in_box(body_v, body_f, half):
+    """Solids inlet (x = -half), outlet (x = half), sides of the box
+    [-half, half]^3 and "body", the given closed outward surface flipped so
+    that its normals point out of the fluid."""
+    v, tagged = box(2, 2, 2, 2.0 * half, 2.0 * half, 2.0 * half)
+    v = [tuple(f32(c - half) for c in p) for p in v]
+
+    def side(t):
+        xs = [v[i][0] for i in t]
+        if all(x == -half for x in xs):
+            return 'inlet'
+        if all(x == half for x in xs):
+            return 'outlet'
+        return 'sides'
+
+    offset = len(v)
+    body = [tuple(i + offset for i in t) for t in flipped(body_f)]
+    allv = v + list(body_v)
+    boxf = [t for _, t in tagged]
+    assert volume(allv, boxf + body) > 0
+    return [(name, allv, [t for t in boxf if side(t) == name])
+            for name in ('inlet', 'outlet', 'sides')] + [('body', allv, body)]
+
+
 if __name__ == '__main__':
     v, f = icosphere(3)
     assert volume(v, f) > 0
@@ -140,3 +237,13 @@ if __name__ == '__main__':
         ('inlet', v, [t for tag, t in tagged if tag == 'inlet']),
         ('walls', v, [t for tag, t in tagged if tag == 'walls']),
     ])
+
+    v, f = icosphere(3)
+    write_ascii('sphereInBox.stl', body_in_box([tuple(f32(0.5 * c) for c in p) for p in v], f, 5.0))
+
+    v, f = cad_cylinder(48, 0.5, -1.0, 1.0)
+    assert volume(v, f) > 0
+    write_ascii('cylinderInBox.stl', body_in_box(v, f, 5.0))
+
+    v, f = capsule(16, 0.03, -0.5, 0.5)
+    write_ascii('needleInBox.stl', body_in_box(v, f, 5.0))

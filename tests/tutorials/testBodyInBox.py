@@ -1,0 +1,155 @@
+"""External flow: a body inside a box, from one STL with several closed
+shells (the body's triangles pointing into it, out of the fluid) and from
+CSG (box and not body), meshed serially and on 2 and 4 ranks, judged by
+checkMesh; the patches are the STL solids / CSG bcnames, and summary.json
+reports the points the fold repair left off the geometry.
+
+Run one test:  python3 testBodyInBox.py bodyInBox.test_stlNp2
+"""
+
+import json
+import os
+import re
+import shutil
+import sys
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from tutorialCase import SOURCE_DIR, cells_in_checkmesh_log  # noqa: E402
+from testSerialTutorials import CaseTest  # noqa: E402
+
+GEOMETRY = os.path.join(SOURCE_DIR, "tests", "data", "geometry")
+PATCHES = {"inlet": "patch", "outlet": "patch", "sides": "patch", "body": "wall"}
+
+FIELD = """FoamFile
+{
+    version 2.0;
+    format ascii;
+    class %s;
+    object %s;
+}
+dimensions %s;
+internalField uniform %s;
+boundaryField
+{
+    #includeEtc "caseDicts/setConstraintTypes"
+%s
+}
+"""
+
+
+class bodyInBox(CaseTest):
+
+    def body_case(self, geometry, **entries):
+        """tutorials/sphereSTL with the body-in-box geometry, its patches in
+        system/pmshDict and 0/U, 0/p with a condition for each."""
+        c = self.case("sphereSTL", maxCellSize=2.5, refinementLevels=1, **entries)
+        shutil.copy(os.path.join(GEOMETRY, geometry),
+                    os.path.join(c.dir, "constant", "geometry", geometry))
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/%s"' % geometry)
+        path = os.path.join(c.dir, "system", "pmshDict")
+        with open(path) as f:
+            text = f.read()
+        patches = "".join("    %s { type %s; }\n" % p for p in PATCHES.items())
+        text = re.sub(r"(?ms)^patches\s*\{.*?^\}", "patches\n{\n%s}" % patches, text)
+        with open(path, "w") as f:
+            f.write(text)
+        u = {"inlet": "type fixedValue; value uniform (1 0 0);",
+             "outlet": "type zeroGradient;", "sides": "type slip;", "body": "type noSlip;"}
+        p = {"inlet": "type zeroGradient;", "outlet": "type fixedValue; value uniform 0;",
+             "sides": "type slip;", "body": "type zeroGradient;"}
+        for name, cls, dims, value, bcs in (
+                ("U", "volVectorField", "[0 1 -1 0 0 0 0]", "(1 0 0)", u),
+                ("p", "volScalarField", "[0 2 -2 0 0 0 0]", "0", p)):
+            with open(os.path.join(c.dir, "0", name), "w") as f:
+                f.write(FIELD % (cls, name, dims, value, "".join(
+                    "    %s { %s }\n" % (patch, bc) for patch, bc in bcs.items())))
+        return c
+
+    def mesh(self, geometry, np):
+        """Mesh, checkMesh must say Mesh OK, the patches are the solids /
+        bcnames with their types; returns (case, summary.json)."""
+        c = self.body_case(geometry)
+        _, log = c.run("pmshFoam", np=np)
+        self.assertIn("End", log)
+        text = c.check_mesh(np=np)
+        if np > 1:
+            self.assertRegex(text, r"Coupled point location match.*OK")
+        self.assertGreater(cells_in_checkmesh_log(text), 1000)
+        boundary = os.path.join(c.dir, "processor0" if np > 1 else "", "constant",
+                                "polyMesh", "boundary")
+        with open(boundary) as f:
+            text = f.read()
+        for name, kind in PATCHES.items():
+            self.assertRegex(text, r"(?s)\b%s\s*\{\s*type\s+%s;" % (name, kind))
+        with open(os.path.join(c.dir, "postProcessing", "pmshFoam", "summary.json")) as f:
+            summary = json.load(f)
+        self.assertIn("pointsOffGeometry", summary)
+        self.assertIn("maxDistanceOffGeometry", summary)
+        # Far below the body's radius (0.5) and the fine cells (~0.3 here)
+        self.assertLess(summary["maxDistanceOffGeometry"], 0.05)
+        return c, summary
+
+    def test_stlSerial(self):
+        self.mesh("sphereInBox.stl", 1)
+
+    def test_stlNp2(self):
+        self.mesh("sphereInBox.stl", 2)
+
+    def test_stlNp4(self):
+        self.mesh("sphereInBox.stl", 4)
+
+    def test_cadLikeStlWithSharpEdgesAndThinTrianglesNp2(self):
+        self.mesh("cylinderInBox.stl", 2)
+
+    def test_csgSerial(self):
+        self.mesh("sphereInBox.geo", 1)
+
+    def test_csgNp2(self):
+        self.mesh("sphereInBox.geo", 2)
+
+    def test_csgNp4(self):
+        self.mesh("sphereInBox.geo", 4)
+
+    # A needle thinner than the coarse cells: the coarse faces wrap round
+    # it and projection folds the refined surface onto itself, which
+    # stopped the volume mesher ("boundary mesh is overlapping") before
+    # the fold repair
+    def needle(self, np):
+        c, summary = self.mesh("needleInBox.stl", np)
+        self.assertGreater(summary["pointsOffGeometry"], 0)
+        # Off by less than the needle's radius (0.03)
+        self.assertLess(summary["maxDistanceOffGeometry"], 0.03)
+        self.assertLessEqual(summary["meanDistanceOffGeometry"], summary["maxDistanceOffGeometry"])
+        with open(os.path.join(c.dir, "log.pmshFoam")) as f:
+            self.assertRegex(f.read(), r"refined points left off the geometry .*: %d,"
+                             % summary["pointsOffGeometry"])
+
+    def test_needleNeedsTheFoldRepairSerial(self):
+        self.needle(1)
+
+    def test_needleNeedsTheFoldRepairNp2(self):
+        self.needle(2)
+
+    def test_bodyOrientedIntoTheFluidIsAnErrorNamingItsSolid(self):
+        c = self.body_case("sphereInBox.stl")
+        path = os.path.join(c.dir, "constant", "geometry", "sphereInBox.stl")
+        with open(path) as f:
+            text = f.read()
+        start = text.index("\nsolid body\n")
+        head, body = text[:start], text[start:]
+        # Reverse the vertex order of every facet of the body
+        body = re.sub(r"(      vertex [^\n]*\n)(      vertex [^\n]*\n)(      vertex [^\n]*\n)",
+                      lambda m: m.group(1) + m.group(3) + m.group(2), body)
+        with open(path, "w") as f:
+            f.write(head + body)
+        code, log = c.run("pmshFoam", check=False)
+        self.assertNotEqual(code, 0)
+        for words in ("sphereInBox.stl", "solid body", "inside",
+                      "Flip the normals of solid body"):
+            self.assertIn(words, log)
+        self.assertFalse(c.exists("constant/polyMesh/owner"))
+
+
+if __name__ == "__main__":
+    unittest.main()
