@@ -131,6 +131,93 @@ int regionSizeFields
     return smallest;
 }
 
+
+//- A closed shell of a partition's surface: triangles connected through
+//  shared points, and six times the signed volume they enclose (> 0: an
+//  outer boundary of the volume; < 0: a hole, such as the body in a
+//  partition of a body-in-box domain that surrounds the body).
+struct shell
+{
+    std::vector<label> triangles;
+    double volume6 = 0;
+};
+
+std::vector<shell> shellsOf
+(
+    const std::vector<point>& points,
+    const std::vector<triFace>& triangles
+)
+{
+    std::vector<label> parent(points.size());
+    std::iota(parent.begin(), parent.end(), label(0));
+    const auto root = [&](label p)
+    {
+        while (parent[p] != p)
+        {
+            p = parent[p] = parent[parent[p]];
+        }
+        return p;
+    };
+    for (const triFace& t : triangles)
+    {
+        parent[root(t[1])] = root(t[0]);
+        parent[root(t[2])] = root(t[0]);
+    }
+    std::vector<shell> shells;
+    std::vector<label> shellOfRoot(points.size(), -1);
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+    {
+        const triFace& t = triangles[i];
+        label& s = shellOfRoot[root(t[0])];
+        if (s < 0)
+        {
+            s = label(shells.size());
+            shells.emplace_back();
+        }
+        shells[s].triangles.push_back(label(i));
+        shells[s].volume6 +=
+            dot(points[t[0]], cross(points[t[1]], points[t[2]]));
+    }
+    return shells;
+}
+
+
+//- Whether point p is inside the closed shell: the parity of the crossings
+//  of a ray from p, in a direction no surface of a mesh is likely to hold.
+bool insideShell
+(
+    const point& p,
+    const shell& s,
+    const std::vector<point>& points,
+    const std::vector<triFace>& triangles
+)
+{
+    const vector d{1, 0.000123456789, 0.000098765432};
+    bool inside = false;
+    for (label i : s.triangles)
+    {
+        // Moller-Trumbore
+        const triFace& t = triangles[i];
+        const vector e1 = points[t[1]] - points[t[0]];
+        const vector e2 = points[t[2]] - points[t[0]];
+        const vector h = cross(d, e2);
+        const double det = dot(e1, h);
+        if (det == 0)
+        {
+            continue;
+        }
+        const vector q = p - points[t[0]];
+        const double u = dot(q, h)/det;
+        const vector r = cross(q, e1);
+        const double v = dot(d, r)/det;
+        if (u >= 0 && v >= 0 && u + v <= 1 && dot(e2, r)/det > 0)
+        {
+            inside = !inside;
+        }
+    }
+    return inside;
+}
+
 } // End anonymous namespace
 
 
@@ -149,37 +236,95 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
 
     const std::size_t nSurface = surfacePoints.size();
     TetMesh result;
+    std::vector<label> surfacePointOfTag;
     try
     {
         gmsh::logger::start();
         gmsh::model::add("pmshFoamPartition");
 
-        // Node tag i + 1 is surface point i: tags, not coordinates, map
-        // Gmsh's nodes back to ours
-        const int surface = gmsh::model::addDiscreteEntity(2);
-        std::vector<std::size_t> tags(nSurface);
-        std::iota(tags.begin(), tags.end(), std::size_t(1));
-        std::vector<double> xyz(3*nSurface);
-        std::memcpy(xyz.data(), surfacePoints.data(), xyz.size()*sizeof(double));
-        gmsh::model::mesh::addNodes(2, surface, tags, xyz);
-
-        std::vector<std::size_t> triangleNodes;
-        triangleNodes.reserve(3*surfaceTriangles.size());
-        for (const triFace& t : surfaceTriangles)
+        // One discrete surface per closed shell, and one volume per outer
+        // shell with its holes: a single surface loop around a surface of
+        // several shells (a partition around the body of a body-in-box
+        // domain) makes HXT fail. Node tags, not coordinates, map Gmsh's
+        // nodes back to ours: surface point surfacePointOfTag[tag - 1].
+        // Quirk: Gmsh renumbers the nodes unless their tags run 1..n
+        // without gaps, so each shell's points get the next tags in turn.
+        const std::vector<shell> shells = shellsOf(surfacePoints, surfaceTriangles);
+        std::vector<int> shellSurface(shells.size());
+        std::vector<std::size_t> tagOfPoint(nSurface, 0);
+        surfacePointOfTag.reserve(nSurface);
+        for (std::size_t s = 0; s < shells.size(); ++s)
         {
-            for (label p : t)
+            shellSurface[s] = gmsh::model::addDiscreteEntity(2);
+            std::vector<std::size_t> tags;
+            std::vector<double> xyz;
+            for (label i : shells[s].triangles)
             {
-                triangleNodes.push_back(std::size_t(p) + 1);
+                for (label p : surfaceTriangles[i])
+                {
+                    if (tagOfPoint[p] == 0)
+                    {
+                        surfacePointOfTag.push_back(p);
+                        tagOfPoint[p] = surfacePointOfTag.size();
+                        tags.push_back(tagOfPoint[p]);
+                        xyz.insert(xyz.end(), surfacePoints[p].begin(), surfacePoints[p].end());
+                    }
+                }
             }
+            gmsh::model::mesh::addNodes(2, shellSurface[s], tags, xyz);
+            std::vector<std::size_t> triangleNodes;
+            triangleNodes.reserve(3*shells[s].triangles.size());
+            for (label i : shells[s].triangles)
+            {
+                for (label p : surfaceTriangles[i])
+                {
+                    triangleNodes.push_back(tagOfPoint[p]);
+                }
+            }
+            gmsh::model::mesh::addElementsByType(shellSurface[s], 2, {}, triangleNodes);
         }
-        gmsh::model::mesh::addElementsByType(surface, 2, {}, triangleNodes);
 
         // Quirk: HXT leaves a discrete volume (addDiscreteEntity(3)) empty
-        // ("No elements in volume"); a built-in-kernel volume bounded by a
-        // surface loop on the discrete surface is meshed, and the surface
-        // mesh is kept as it is.
-        const int loop = gmsh::model::geo::addSurfaceLoop({surface});
-        gmsh::model::geo::addVolume({loop});
+        // ("No elements in volume"); a built-in-kernel volume bounded by
+        // surface loops on the discrete surfaces is meshed (the first loop
+        // its outside, the others its holes), and the surface mesh is kept
+        // as it is.
+        std::vector<std::size_t> outers;
+        for (std::size_t s = 0; s < shells.size(); ++s)
+        {
+            if (shells[s].volume6 > 0) outers.push_back(s);
+        }
+        std::vector<std::vector<int>> loops(outers.size());
+        for (std::size_t o = 0; o < outers.size(); ++o)
+        {
+            loops[o].push_back(gmsh::model::geo::addSurfaceLoop({shellSurface[outers[o]]}));
+        }
+        for (std::size_t s = 0; s < shells.size(); ++s)
+        {
+            if (shells[s].volume6 > 0 || outers.empty()) continue;
+            // The hole belongs to the smallest outer shell around it
+            std::size_t owner = 0;
+            double ownerVolume = -1;
+            const point& p = surfacePoints[surfaceTriangles[shells[s].triangles[0]][0]];
+            for (std::size_t o = 0; o < outers.size(); ++o)
+            {
+                const double v = shells[outers[o]].volume6;
+                if
+                (
+                    (outers.size() == 1 || insideShell(p, shells[outers[o]], surfacePoints, surfaceTriangles))
+                 && (ownerVolume < 0 || v < ownerVolume)
+                )
+                {
+                    owner = o;
+                    ownerVolume = v;
+                }
+            }
+            loops[owner].push_back(gmsh::model::geo::addSurfaceLoop({shellSurface[s]}));
+        }
+        for (const std::vector<int>& volumeLoops : loops)
+        {
+            gmsh::model::geo::addVolume(volumeLoops);
+        }
         gmsh::model::geo::synchronize();
 
         gmsh::option::setNumber("Mesh.Algorithm3D", 10);       // HXT
@@ -221,16 +366,16 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         std::vector<double> coords, parametric;
         gmsh::model::mesh::getNodes(nodeTags, coords, parametric, -1, -1, false, false);
 
-        // Node tag i + 1 is surface point i (where Gmsh put it: whether it
-        // is still where it went in is VolumeMesher::mesh's to check); new
-        // nodes follow in tag order
+        // Tags 1..nSurface are the surface points (where Gmsh put them:
+        // whether they are still where they went in is VolumeMesher::mesh's
+        // to check); new nodes follow in tag order
         result.points = surfacePoints;
         std::vector<std::size_t> newTags;
         for (std::size_t k = 0; k < nodeTags.size(); ++k)
         {
             if (nodeTags[k] <= nSurface)
             {
-                result.points[nodeTags[k] - 1] =
+                result.points[surfacePointOfTag[nodeTags[k] - 1]] =
                     {coords[3*k], coords[3*k + 1], coords[3*k + 2]};
             }
             else
@@ -246,7 +391,7 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         std::size_t maxTag = nSurface;
         for (std::size_t k : newTags) maxTag = std::max(maxTag, nodeTags[k]);
         std::vector<label> index(maxTag + 1, -1);
-        for (std::size_t i = 0; i < nSurface; ++i) index[i + 1] = label(i);
+        for (std::size_t i = 0; i < nSurface; ++i) index[i + 1] = surfacePointOfTag[i];
 
         result.points.reserve(nSurface + newTags.size());
         for (std::size_t k : newTags)

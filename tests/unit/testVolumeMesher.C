@@ -291,3 +291,53 @@ TEST(VolumeMesher, meshRejectsASliverThatCheckMeshWouldFail)
     sliver.points[3][2] = 0.1;
     EXPECT_NO_THROW(givenMeshMesher(sliver).mesh(sliver.points, surface, {}));
 }
+
+
+TEST(hxtVolumeMesher, surfacesOfSeveralShellsWithHolesAndApartParts)
+{
+    // A partition around the body of a body-in-box domain is bounded by
+    // two shells, the inner one pointing into the body; a partition may
+    // also be two separate parts. One surface loop around all of them made
+    // HXT fail, and every such partition went to Netgen.
+    const closedSurface outer = icosphere(2);
+    closedSurface s = outer;
+    const auto addShell = [&s](const closedSurface& c, double scale, const point& shift, bool flip)
+    {
+        const label offset = label(s.points.size());
+        for (const point& p : c.points) s.points.push_back(scale*p + shift);
+        for (triFace t : c.triangles)
+        {
+            if (flip) std::swap(t[1], t[2]);
+            s.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+        }
+    };
+    addShell(icosphere(1), 0.3, {0, 0, 0}, true);       // the body: a hole
+    addShell(outer, 1, {3, 0, 0}, false);               // a part apart
+    addShell(icosphere(1), 0.3, {3, 0, 0}, true);       // with its own hole
+
+    volumeMeshParameters p;
+    p.maxCellSize = 0.2;
+    const TetMesh m = VolumeMesher::New("hxt")->mesh(s.points, s.triangles, p);
+
+    // The tets fill the two balls less their holes: their volume is the
+    // surface's (the contract check in mesh() has already seen every
+    // triangle the face of one tet)
+    const auto enclosed6 = [](const closedSurface& c)
+    {
+        double v = 0;
+        for (const triFace& t : c.triangles)
+        {
+            v += dot(c.points[t[0]], cross(c.points[t[1]], c.points[t[2]]));
+        }
+        return v;
+    };
+    double volume6 = 0;
+    for (const tetCell& t : m.tets)
+    {
+        volume6 += tetVolume6(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
+    }
+    const double ball6 = enclosed6(outer);
+    const double hole6 = 0.3*0.3*0.3*enclosed6(icosphere(1));
+    EXPECT_NEAR(volume6, enclosed6(s), 1e-9*ball6);
+    EXPECT_NEAR(volume6, 2*(ball6 - hole6), 1e-9*ball6);
+}
