@@ -2,8 +2,8 @@
 a mesh one refinement level coarser (refinementLevels 1: 17.9k cells), so
 that it takes about 30 s of CPU on each of 2 ranks; OpenFOAM's checkMesh
 -parallel, simpleFoam -parallel and the forceCoeffs function object judge
-the case. (The full case, with its Cd
-within 10 % of the reference, is ./Allrun in the tutorial: not a test.)
+the case. (The full case, with its Cd within 10 % of the reference, is
+./Allrun in the tutorial: not a test.)
 
 Run one test:  python3 testSphereDrag.py sphereDrag.test_coarseAllrunGivesCdNearTheReference
 """
