@@ -6,6 +6,7 @@
 #include "stlGeometry.H"
 #include "netgenInterface.H"
 #include "pmshError.H"
+#include "Info.H"
 #include "matchByPoints.H"
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <sstream>
 
 // * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
 
@@ -628,6 +630,144 @@ pmsh::point pmsh::stlGeometry::projectToEdge
 }
 
 
+namespace pmsh
+{
+namespace
+{
+
+//- A number as the log and pmshDict write it (6 significant digits).
+std::string toString(double x)
+{
+    std::ostringstream os;
+    os << x;
+    return os.str();
+}
+
+
+//- One try of Netgen's STL mesher: what it changes, and its parameters.
+struct meshAttempt
+{
+    std::string change;
+    ng::meshParameters parameters;
+};
+
+
+//- The configured parameters, then the retries. Measured on a curved wall
+//  of radius 1 and thickness 0.002 at maxCellSize 0.3 ("boundary mesh is
+//  overlapping"): curvatureRefinement 10 or maxCellSize 0.1 cure it;
+//  Netgen's close-edge restriction 5x stronger with its edge-angle
+//  restriction does not, and makes curvatureRefinement 10 fail too.
+std::vector<meshAttempt> meshAttempts(const ng::meshParameters& configured)
+{
+    std::vector<meshAttempt> attempts{{"", configured}};
+
+    // Smaller sizes on curved faces: a chord of a curved wall sags by
+    // h^2/(8 radius) = radius/(8 curvatureRefinement^2), and crosses the
+    // wall's other side where that exceeds its thickness. Each retry
+    // divides the sag by 9.
+    ng::meshParameters curved = configured;
+    for (double least : {10.0, 30.0})
+    {
+        curved.curvatureRefinement =
+            std::max(least, 3*curved.curvatureRefinement);
+        attempts.push_back
+        (
+            {
+                "curvatureRefinement " + toString(curved.curvatureRefinement),
+                curved
+            }
+        );
+    }
+
+    // Smaller sizes everywhere, for walls or gaps thinner than the
+    // triangles on flat faces too
+    ng::meshParameters finer = curved;
+    finer.maxh = configured.maxh/2;
+    attempts.push_back
+    (
+        {
+            "maxCellSize " + toString(finer.maxh) + " and curvatureRefinement "
+          + toString(curved.curvatureRefinement),
+            finer
+        }
+    );
+    return attempts;
+}
+
+
+//- Netgen's coarse mesh of the STL surface, retried with smaller sizes
+//  while Netgen's meshing steps fail.
+ng::volumeMesh retriedStlMesh
+(
+    const std::vector<point>& points,
+    const std::vector<triFace>& triangles,
+    const std::vector<std::array<label, 2>>& featureEdges,
+    const ng::meshParameters& configured,
+    const std::string& fileName
+)
+{
+    const std::string what = "STL file \"" + fileName + "\"";
+    const std::vector<meshAttempt> attempts = meshAttempts(configured);
+
+    // Netgen's STL mesher fails on some valid surfaces where its triangles
+    // are too large for the geometry, e.g. "boundary mesh is overlapping"
+    // on a thin curved wall: each retry asks for smaller ones
+    std::vector<std::string> reasons;
+    for (std::size_t i = 0; i < attempts.size(); ++i)
+    {
+        try
+        {
+            ng::volumeMesh m = ng::stlVolumeMesh
+            (
+                points, triangles, featureEdges, attempts[i].parameters, what
+            );
+            if (i > 0)
+            {
+                Info()
+                    << "    Netgen's STL mesh succeeded at attempt " << i + 1
+                    << " (" << attempts[i].change << ")\n";
+            }
+            return m;
+        }
+        catch (const ng::stlMeshingFailure& e)
+        {
+            reasons.push_back(e.reason());
+            if (i + 1 < attempts.size())
+            {
+                Info()
+                    << "    Netgen's STL mesh failed (" << e.reason()
+                    << "); retrying with " << attempts[i + 1].change << '\n';
+            }
+        }
+    }
+
+    const ng::meshParameters& last = attempts.back().parameters;
+    msg message;
+    message
+        << "Netgen could not mesh " << what << " in " << attempts.size()
+        << " attempts:";
+    for (std::size_t i = 0; i < attempts.size(); ++i)
+    {
+        message
+            << "\n    " << i + 1 << " ("
+            << (i == 0 ? "as configured" : attempts[i].change) << "): "
+            << reasons[i];
+    }
+    message
+        << "\nNetgen's triangles are too large for some part of the surface"
+        << " (often a wall thinner than the sag of its triangles on a curved"
+        << " face, or two surfaces closer than maxCellSize). In system/pmshDict"
+        << " set maxCellSize " << toString(last.maxh/2) << " (or smaller), or"
+        << " curvatureRefinement " << toString(2*last.curvatureRefinement)
+        << ", or give the thin part's patch a smaller maxCellSize in"
+        << " patches; also check the STL for self-intersections.";
+    throw FatalError(message, "pmsh::stlGeometry::netgenMesh");
+}
+
+} // End anonymous namespace
+} // End namespace pmsh
+
+
 pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
 (
     const coarseMeshParameters& parameters,
@@ -655,13 +795,9 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
     mp.regions = parameters.regions;
     mp.sizePoints = parameters.sizePoints;
     mp.curvatureRefinement = parameters.curvatureRefinement;
-    ng::volumeMesh m = ng::stlVolumeMesh
+    ng::volumeMesh m = retriedStlMesh
     (
-        d.surface.points,
-        d.surface.triangles,
-        d.featureEdges,
-        mp,
-        "STL file \"" + fileName_ + "\""
+        d.surface.points, d.surface.triangles, d.featureEdges, mp, fileName_
     );
 
     // Netgen's boundary vertices lie on the STL up to rounding; a vertex is

@@ -1154,13 +1154,14 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
         // Always NG_OK: count the triangles instead
         if (nglib::Ng_GetNSE(mesh) == 0)
         {
-            throw FatalError
+            throw stlMeshingFailure
             (
                 msg()
                     << "Netgen failed to mesh the surface of " << what
                     << " (maxCellSize " << parameters.maxh << "): no surface"
                     << " triangles" << session.tail(),
-                function
+                function,
+                "meshing the surface: no surface triangles"
             );
         }
 
@@ -1176,26 +1177,31 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
     }
     catch (const std::exception& e)
     {
-        throw FatalError
+        // E.g. "Stop meshing since boundary mesh is overlapping": the
+        // surface mesh's chords of a thin curved wall cross the other side
+        // (stlGeometry retries with smaller sizes)
+        throw stlMeshingFailure
         (
             msg()
                 << "Netgen failed " << step << " of " << what
                 << " (maxCellSize " << parameters.maxh << "): "
                 << exceptionText(e) << session.tail(),
-            function
+            function,
+            std::string(step) + ": " + exceptionText(e)
         );
     }
 
     // Always NG_OK: count the tets instead
     if (!parameters.surfaceOnly && nglib::Ng_GetNE(mesh) == 0)
     {
-        throw FatalError
+        throw stlMeshingFailure
         (
             msg()
                 << "Netgen failed to mesh the volume of " << what
                 << " (maxCellSize " << parameters.maxh << "): no tets"
                 << session.tail(),
-            function
+            function,
+            "meshing the volume: no tets"
         );
     }
 

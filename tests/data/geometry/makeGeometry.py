@@ -225,6 +225,43 @@ def body_in_box(body_v, body_f, half):
             for name in ('inlet', 'outlet', 'sides')] + [('body', allv, body)]
 
 
+def curved_wall(radius, thickness, angle, length, n_arc, n_length):
+    """A closed slab bent into a cylindrical arc: outer radius `radius`,
+    inner radius - thickness, `angle` radians around the z axis, z in
+    [0, length]; n_arc x n_length quads on each curved face, outward.
+    Netgen's STL mesher stops on it ("boundary mesh is overlapping") where
+    the sag of its triangles, h^2/(8 radius), exceeds the thickness."""
+    v = []
+    index = {}
+
+    def pid(side, i, j):
+        key = (side, i, j)
+        if key not in index:
+            a = -angle / 2 + angle * i / n_arc
+            r = radius if side == 0 else radius - thickness
+            index[key] = len(v)
+            v.append((f32(r * math.cos(a)), f32(r * math.sin(a)), f32(length * j / n_length)))
+        return index[key]
+
+    f = []
+
+    def quad(a, b, c, d):       # counterclockwise seen from outside
+        f.extend([(a, b, c), (a, c, d)])
+
+    for i in range(n_arc):
+        for j in range(n_length):
+            quad(pid(0, i, j), pid(0, i + 1, j), pid(0, i + 1, j + 1), pid(0, i, j + 1))
+            quad(pid(1, i, j), pid(1, i, j + 1), pid(1, i + 1, j + 1), pid(1, i + 1, j))
+        quad(pid(1, i, 0), pid(1, i + 1, 0), pid(0, i + 1, 0), pid(0, i, 0))
+        quad(pid(1, i, n_length), pid(0, i, n_length),
+             pid(0, i + 1, n_length), pid(1, i + 1, n_length))
+    for j in range(n_length):
+        quad(pid(1, 0, j), pid(0, 0, j), pid(0, 0, j + 1), pid(1, 0, j + 1))
+        quad(pid(1, n_arc, j), pid(1, n_arc, j + 1),
+             pid(0, n_arc, j + 1), pid(0, n_arc, j))
+    return v, f
+
+
 if __name__ == '__main__':
     v, f = icosphere(3)
     assert volume(v, f) > 0
