@@ -183,6 +183,26 @@ void fillFace
 }
 
 
+//- The n^2 triangles of a coarse face whose edges are split n times, each
+//  as three lattice points (i, j) (point i along v0-v1, j along v0-v2),
+//  oriented like (v0, v1, v2): f(i0, j0, i1, j1, i2, j2).
+template<class Triangle>
+void forEachLatticeTriangle(int n, Triangle f)
+{
+    for (int j = 0; j < n; ++j)
+    {
+        for (int i = 0; i + j < n; ++i)
+        {
+            f(i, j, i + 1, j, i, j + 1);
+            if (i + j + 1 < n)
+            {
+                f(i + 1, j, i + 1, j + 1, i, j + 1);
+            }
+        }
+    }
+}
+
+
 //- Refined triangles of a lattice (points v0 < v1 < v2 at `pos`) that
 //  turned against the coarse face (v0, v1, v2).
 label countLatticeFolds(const std::vector<point>& pos, int n)
@@ -191,24 +211,14 @@ label countLatticeFolds(const std::vector<point>& pos, int n)
     const vector coarseNormal =
         cross(P(n, 0) - P(0, 0), P(0, n) - P(0, 0));
     label nFolded = 0;
-    auto test = [&](const point& a, const point& b, const point& c)
+    forEachLatticeTriangle(n, [&](int i0, int j0, int i1, int j1, int i2, int j2)
     {
-        if (dot(cross(b - a, c - a), coarseNormal) <= 0)
+        const point& a = P(i0, j0);
+        if (dot(cross(P(i1, j1) - a, P(i2, j2) - a), coarseNormal) <= 0)
         {
             ++nFolded;
         }
-    };
-    for (int j = 0; j < n; ++j)
-    {
-        for (int i = 0; i + j < n; ++i)
-        {
-            test(P(i, j), P(i + 1, j), P(i, j + 1));
-            if (i + j + 1 < n)
-            {
-                test(P(i + 1, j), P(i + 1, j + 1), P(i, j + 1));
-            }
-        }
-    }
+    });
     return nFolded;
 }
 
@@ -647,22 +657,12 @@ pmsh::FineSurface pmsh::refineSurface
         // the coarse face's outward orientation where that differs
         const bool flip = !sameOrientation(v, f);
         auto P = [&](int i, int j) { return latticePoint[j*(n + 1) + i]; };
-        auto addTriangle = [&](label a, label b, label c)
+        forEachLatticeTriangle(n, [&](int i0, int j0, int i1, int j1, int i2, int j2)
         {
+            const label a = P(i0, j0), b = P(i1, j1), c = P(i2, j2);
             fine.triangles.push_back(flip ? triFace{a, c, b} : triFace{a, b, c});
             fine.region.push_back(partSurface.region[facei]);
-        };
-        for (int j = 0; j < n; ++j)
-        {
-            for (int i = 0; i + j < n; ++i)
-            {
-                addTriangle(P(i, j), P(i + 1, j), P(i, j + 1));
-                if (i + j + 1 < n)
-                {
-                    addTriangle(P(i + 1, j), P(i + 1, j + 1), P(i, j + 1));
-                }
-            }
-        }
+        });
     }
     return fine;
 }
