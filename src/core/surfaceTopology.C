@@ -3,6 +3,8 @@
 #include "matchByPoints.H"
 
 #include <algorithm>
+#include <cmath>
+#include <unordered_map>
 
 pmsh::surfaceEdgeDefects pmsh::findSurfaceEdgeDefects
 (
@@ -74,4 +76,83 @@ pmsh::surfacePointDefects pmsh::findSurfacePointDefects
         defects.firstUnused = label(unused - used.begin());
     }
     return defects;
+}
+
+
+std::vector<pmsh::label> pmsh::surfaceShells
+(
+    const label nPoints,
+    const std::vector<triFace>& triangles,
+    label& nShells
+)
+{
+    // Union-find over the points: triangles sharing a point share a shell
+    std::vector<label> parent(nPoints);
+    for (std::size_t i = 0; i < parent.size(); ++i)
+    {
+        parent[i] = label(i);
+    }
+    auto root = [&parent](label i)
+    {
+        while (parent[i] != i)
+        {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        return i;
+    };
+    for (const triFace& f : triangles)
+    {
+        for (int k = 1; k < 3; ++k)
+        {
+            const label a = root(f[0]);
+            const label b = root(f[k]);
+            if (a != b)
+            {
+                parent[std::max(a, b)] = std::min(a, b);
+            }
+        }
+    }
+
+    // Shells numbered in the order of their first triangle
+    std::unordered_map<label, label> shellOfRoot;
+    std::vector<label> shell(triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+    {
+        shell[t] = shellOfRoot.emplace
+        (
+            root(triangles[t][0]), label(shellOfRoot.size())
+        ).first->second;
+    }
+    nShells = label(shellOfRoot.size());
+    return shell;
+}
+
+
+double pmsh::windingNumber
+(
+    const std::vector<point>& points,
+    const std::vector<triFace>& triangles,
+    const std::vector<label>& shellTriangles,
+    const point& x
+)
+{
+    // Sum of the solid angles of the triangles seen from x (Van Oosterom
+    // and Strackee), over 4 pi: +-1 inside a closed surface, 0 outside
+    double omega = 0;
+    for (label t : shellTriangles)
+    {
+        const triFace& f = triangles[t];
+        const vector a = points[f[0]] - x;
+        const vector b = points[f[1]] - x;
+        const vector c = points[f[2]] - x;
+        const double la = std::sqrt(magSqr(a));
+        const double lb = std::sqrt(magSqr(b));
+        const double lc = std::sqrt(magSqr(c));
+        const double numerator = dot(a, cross(b, c));
+        const double denominator =
+            la*lb*lc + dot(a, b)*lc + dot(a, c)*lb + dot(b, c)*la;
+        omega += 2*std::atan2(numerator, denominator);
+    }
+    return omega/(4*M_PI);
 }

@@ -642,85 +642,12 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
 }
 
 
-std::vector<pmsh::label> pmsh::stlShells(const stlSurface& s, label& nShells)
-{
-    // Union-find over the points: triangles sharing a point share a shell
-    std::vector<label> parent(s.points.size());
-    for (std::size_t i = 0; i < parent.size(); ++i)
-    {
-        parent[i] = label(i);
-    }
-    auto root = [&parent](label i)
-    {
-        while (parent[i] != i)
-        {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        return i;
-    };
-    for (const triFace& f : s.triangles)
-    {
-        for (int k = 1; k < 3; ++k)
-        {
-            const label a = root(f[0]);
-            const label b = root(f[k]);
-            if (a != b)
-            {
-                parent[std::max(a, b)] = std::min(a, b);
-            }
-        }
-    }
-
-    // Shells numbered in the order of their first triangle
-    std::unordered_map<label, label> shellOfRoot;
-    std::vector<label> shell(s.triangles.size());
-    for (std::size_t t = 0; t < s.triangles.size(); ++t)
-    {
-        shell[t] = shellOfRoot.emplace
-        (
-            root(s.triangles[t][0]), label(shellOfRoot.size())
-        ).first->second;
-    }
-    nShells = label(shellOfRoot.size());
-    return shell;
-}
-
-
-double pmsh::windingNumber
-(
-    const stlSurface& s,
-    const std::vector<label>& triangles,
-    const point& x
-)
-{
-    // Sum of the solid angles of the triangles seen from x (Van Oosterom
-    // and Strackee), over 4 pi: +-1 inside a closed surface, 0 outside
-    double omega = 0;
-    for (label t : triangles)
-    {
-        const triFace& f = s.triangles[t];
-        const vector a = s.points[f[0]] - x;
-        const vector b = s.points[f[1]] - x;
-        const vector c = s.points[f[2]] - x;
-        const double la = std::sqrt(magSqr(a));
-        const double lb = std::sqrt(magSqr(b));
-        const double lc = std::sqrt(magSqr(c));
-        const double numerator = dot(a, cross(b, c));
-        const double denominator =
-            la*lb*lc + dot(a, b)*lc + dot(a, c)*lb + dot(b, c)*la;
-        omega += 2*std::atan2(numerator, denominator);
-    }
-    return omega/(4*M_PI);
-}
-
-
 void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileName)
 {
     const char* function = "pmsh::checkShellOrientation";
 
     label nShells = 0;
-    const std::vector<label> shell = stlShells(s, nShells);
+    const std::vector<label> shell = surfaceShells(label(s.points.size()), s.triangles, nShells);
     std::vector<std::vector<label>> triangles(nShells);
     for (label t = 0; t < s.nTriangles(); ++t)
     {
@@ -794,7 +721,11 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
         std::string around;
         for (label other = 0; other < nShells; ++other)
         {
-            if (other != sh && std::abs(windingNumber(s, triangles[other], x)) > 0.5)
+            if
+            (
+                other != sh
+             && std::abs(windingNumber(s.points, s.triangles, triangles[other], x)) > 0.5
+            )
             {
                 ++depth;
                 around = solidsOf(other);

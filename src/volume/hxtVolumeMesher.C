@@ -6,6 +6,7 @@
 #include "hxtVolumeMesher.H"
 #include "pmshError.H"
 #include "tetQualityPass.H"
+#include "surfaceTopology.H"
 
 #include <gmsh.h>
 
@@ -132,92 +133,6 @@ int regionSizeFields
 }
 
 
-//- A closed shell of a partition's surface: triangles connected through
-//  shared points, and six times the signed volume they enclose (> 0: an
-//  outer boundary of the volume; < 0: a hole, such as the body in a
-//  partition of a body-in-box domain that surrounds the body).
-struct shell
-{
-    std::vector<label> triangles;
-    double volume6 = 0;
-};
-
-std::vector<shell> shellsOf
-(
-    const std::vector<point>& points,
-    const std::vector<triFace>& triangles
-)
-{
-    std::vector<label> parent(points.size());
-    std::iota(parent.begin(), parent.end(), label(0));
-    const auto root = [&](label p)
-    {
-        while (parent[p] != p)
-        {
-            p = parent[p] = parent[parent[p]];
-        }
-        return p;
-    };
-    for (const triFace& t : triangles)
-    {
-        parent[root(t[1])] = root(t[0]);
-        parent[root(t[2])] = root(t[0]);
-    }
-    std::vector<shell> shells;
-    std::vector<label> shellOfRoot(points.size(), -1);
-    for (std::size_t i = 0; i < triangles.size(); ++i)
-    {
-        const triFace& t = triangles[i];
-        label& s = shellOfRoot[root(t[0])];
-        if (s < 0)
-        {
-            s = label(shells.size());
-            shells.emplace_back();
-        }
-        shells[s].triangles.push_back(label(i));
-        shells[s].volume6 +=
-            dot(points[t[0]], cross(points[t[1]], points[t[2]]));
-    }
-    return shells;
-}
-
-
-//- Whether point p is inside the closed shell: the parity of the crossings
-//  of a ray from p, in a direction no surface of a mesh is likely to hold.
-bool insideShell
-(
-    const point& p,
-    const shell& s,
-    const std::vector<point>& points,
-    const std::vector<triFace>& triangles
-)
-{
-    const vector d{1, 0.000123456789, 0.000098765432};
-    bool inside = false;
-    for (label i : s.triangles)
-    {
-        // Moller-Trumbore
-        const triFace& t = triangles[i];
-        const vector e1 = points[t[1]] - points[t[0]];
-        const vector e2 = points[t[2]] - points[t[0]];
-        const vector h = cross(d, e2);
-        const double det = dot(e1, h);
-        if (det == 0)
-        {
-            continue;
-        }
-        const vector q = p - points[t[0]];
-        const double u = dot(q, h)/det;
-        const vector r = cross(q, e1);
-        const double v = dot(d, r)/det;
-        if (u >= 0 && v >= 0 && u + v <= 1 && dot(e2, r)/det > 0)
-        {
-            inside = !inside;
-        }
-    }
-    return inside;
-}
-
 } // End anonymous namespace
 
 
@@ -249,7 +164,14 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         // nodes back to ours: surface point surfacePointOfTag[tag - 1].
         // Quirk: Gmsh renumbers the nodes unless their tags run 1..n
         // without gaps, so each shell's points get the next tags in turn.
-        const std::vector<shell> shells = shellsOf(surfacePoints, surfaceTriangles);
+        label nShells = 0;
+        const std::vector<label> shellOf =
+            surfaceShells(label(nSurface), surfaceTriangles, nShells);
+        std::vector<std::vector<label>> shells(nShells);
+        for (std::size_t t = 0; t < surfaceTriangles.size(); ++t)
+        {
+            shells[shellOf[t]].push_back(label(t));
+        }
         std::vector<int> shellSurface(shells.size());
         std::vector<std::size_t> tagOfPoint(nSurface, 0);
         surfacePointOfTag.reserve(nSurface);
@@ -258,7 +180,9 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
             shellSurface[s] = gmsh::model::addDiscreteEntity(2);
             std::vector<std::size_t> tags;
             std::vector<double> xyz;
-            for (label i : shells[s].triangles)
+            std::vector<std::size_t> triangleNodes;
+            triangleNodes.reserve(3*shells[s].size());
+            for (label i : shells[s])
             {
                 for (label p : surfaceTriangles[i])
                 {
@@ -269,18 +193,10 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
                         tags.push_back(tagOfPoint[p]);
                         xyz.insert(xyz.end(), surfacePoints[p].begin(), surfacePoints[p].end());
                     }
-                }
-            }
-            gmsh::model::mesh::addNodes(2, shellSurface[s], tags, xyz);
-            std::vector<std::size_t> triangleNodes;
-            triangleNodes.reserve(3*shells[s].triangles.size());
-            for (label i : shells[s].triangles)
-            {
-                for (label p : surfaceTriangles[i])
-                {
                     triangleNodes.push_back(tagOfPoint[p]);
                 }
             }
+            gmsh::model::mesh::addNodes(2, shellSurface[s], tags, xyz);
             gmsh::model::mesh::addElementsByType(shellSurface[s], 2, {}, triangleNodes);
         }
 
@@ -288,11 +204,24 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         // ("No elements in volume"); a built-in-kernel volume bounded by
         // surface loops on the discrete surfaces is meshed (the first loop
         // its outside, the others its holes), and the surface mesh is kept
-        // as it is.
+        // as it is. A shell is a hole where the volume lies outside it (its
+        // normals point into it: winding number -1 at points inside); it
+        // belongs to the smallest outer shell around it.
         std::vector<std::size_t> outers;
+        std::vector<double> outerSize;
         for (std::size_t s = 0; s < shells.size(); ++s)
         {
-            if (shells[s].volume6 > 0) outers.push_back(s);
+            double volume6 = 0;
+            for (label i : shells[s])
+            {
+                const triFace& t = surfaceTriangles[i];
+                volume6 += dot(surfacePoints[t[0]], cross(surfacePoints[t[1]], surfacePoints[t[2]]));
+            }
+            if (volume6 > 0)
+            {
+                outers.push_back(s);
+                outerSize.push_back(volume6);
+            }
         }
         std::vector<std::vector<int>> loops(outers.size());
         for (std::size_t o = 0; o < outers.size(); ++o)
@@ -301,25 +230,24 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         }
         for (std::size_t s = 0; s < shells.size(); ++s)
         {
-            if (shells[s].volume6 > 0 || outers.empty()) continue;
-            // The hole belongs to the smallest outer shell around it
-            std::size_t owner = 0;
-            double ownerVolume = -1;
-            const point& p = surfacePoints[surfaceTriangles[shells[s].triangles[0]][0]];
+            const bool outer = std::find(outers.begin(), outers.end(), s) != outers.end();
+            if (outer || outers.empty()) continue;
+            const point& p = surfacePoints[surfaceTriangles[shells[s][0]][0]];
+            std::size_t owner = outers.size();
             for (std::size_t o = 0; o < outers.size(); ++o)
             {
-                const double v = shells[outers[o]].volume6;
-                if
-                (
-                    (outers.size() == 1 || insideShell(p, shells[outers[o]], surfacePoints, surfaceTriangles))
-                 && (ownerVolume < 0 || v < ownerVolume)
-                )
+                const bool around =
+                    outers.size() == 1
+                 || windingNumber(surfacePoints, surfaceTriangles, shells[outers[o]], p) > 0.5;
+                if (around && (owner == outers.size() || outerSize[o] < outerSize[owner]))
                 {
                     owner = o;
-                    ownerVolume = v;
                 }
             }
-            loops[owner].push_back(gmsh::model::geo::addSurfaceLoop({shellSurface[s]}));
+            loops[owner == outers.size() ? 0 : owner].push_back
+            (
+                gmsh::model::geo::addSurfaceLoop({shellSurface[s]})
+            );
         }
         for (const std::vector<int>& volumeLoops : loops)
         {

@@ -2,6 +2,7 @@
 // names, projection onto surfaces and edges, and every STL input error.
 
 #include "testPaths.H"
+#include "surfaceTopology.H"
 #include "Geometry.H"
 #include "csgGeometry.H"
 #include "stlGeometry.H"
@@ -907,7 +908,7 @@ TEST(stlReader, bodyInABoxIsTwoShellsEachPointingOutOfTheFluid)
     const std::string f = testDataDir() + "/geometry/sphereInBox.stl";
     const stlSurface s = readStl(f);
     label nShells = 0;
-    const std::vector<label> shell = stlShells(s, nShells);
+    const std::vector<label> shell = surfaceShells(label(s.points.size()), s.triangles, nShells);
     ASSERT_EQ(nShells, 2);
     std::vector<label> bodyTriangles;
     for (label t = 0; t < s.nTriangles(); ++t)
@@ -917,8 +918,8 @@ TEST(stlReader, bodyInABoxIsTwoShellsEachPointingOutOfTheFluid)
         if (shell[t] == 1) bodyTriangles.push_back(t);
     }
     // The body points into itself: winding number -1 inside it
-    EXPECT_NEAR(windingNumber(s, bodyTriangles, {0, 0, 0}), -1, 1e-9);
-    EXPECT_NEAR(windingNumber(s, bodyTriangles, {2, 0, 0}), 0, 1e-9);
+    EXPECT_NEAR(windingNumber(s.points, s.triangles, bodyTriangles, {0, 0, 0}), -1, 1e-9);
+    EXPECT_NEAR(windingNumber(s.points, s.triangles, bodyTriangles, {2, 0, 0}), 0, 1e-9);
     EXPECT_NO_THROW(checkStl(s, f));
 
     auto flipSolids = [&](const std::vector<std::string>& names)
