@@ -254,6 +254,7 @@ int main(int argc, char *argv[])
             comm, *geometry, pmsh::coarseParameters(settings, runTime.globalPath())
         );
         pmsh::setPatchTypes(coarse, settings);
+        const std::vector<std::array<pmsh::label, 2>> zonePairs = pmsh::zonePairsOf(coarse);
         pmsh::logCoarseMesh(coarse);
         pmsh::logLocalSizes(coarse, settings);
         // Expected fine cells of every coarse cell (the master's): the
@@ -318,10 +319,10 @@ int main(int argc, char *argv[])
         pmsh::partitionVolumeResult volume;
         pmsh::failTogether(comm, [&]
         {
-            volume = pmsh::meshVolumeWithFallbacks
+            volume = pmsh::meshVolumeByZone
             (
                 pmsh::VolumeMesher::NewAll(settings.volumeMesher),
-                surface.points, surface.triangles,
+                surface.points, surface.triangles, surface.zone, coarse.zones,
                 pmsh::volumeParameters(settings, surface, comm.rank()),
                 pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank()),
                 "Try a smaller maxCellSize (a finer coarse mesh) or another"
@@ -352,6 +353,7 @@ int main(int argc, char *argv[])
         pmsh::meshQualityReport quality;
         pmsh::failTogether(comm, [&]
         {
+            pmsh::dropFacesBetweenZones(surface);
             rankMesh = pmsh::tetsToPolyMesh
             (
                 std::move(tets.points), tets.tets,
@@ -360,6 +362,9 @@ int main(int argc, char *argv[])
                 numbering.globalIds()
             );
             tets = pmsh::TetMesh();
+            rankMesh.zoneNames = coarse.zones;
+            rankMesh.cellZone = std::move(volume.tetZone);
+            rankMesh.zonePairs = zonePairs;
         });
         const pmsh::meshSizes sizes = pmsh::meshSizesOf(rankMesh);
         pmsh::procAddressing addressing;

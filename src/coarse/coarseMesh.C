@@ -68,11 +68,26 @@ CoarseMesh meshOnMaster(const Geometry& geometry, const coarseMeshParameters& pa
         return coarse;
     }
 
+    // Each zone is filled on its own: its boundary faces and its side of
+    // the faces between zones
     CoarseMesh coarse = geometry.coarseSurface(parameters);
-    std::vector<triFace> triangles(coarse.boundary.size());
-    for (std::size_t b = 0; b < triangles.size(); ++b)
+    std::vector<triFace> triangles;
+    std::vector<label> triangleZone;
+    for (const coarseBoundaryFace& b : coarse.boundary)
     {
-        triangles[b] = coarse.boundary[b].v;
+        triangles.push_back(b.v);
+        triangleZone.push_back(b.zone);
+    }
+    for (const coarseZoneFace& f : coarse.zoneFaces)
+    {
+        triangles.push_back(f.v);
+        triangleZone.push_back(f.inside);
+        triangles.push_back({f.v[0], f.v[2], f.v[1]});
+        triangleZone.push_back(f.outside);
+    }
+    if (coarse.zones.empty())
+    {
+        triangleZone.clear();
     }
 
     volumeMeshParameters p;
@@ -83,14 +98,15 @@ CoarseMesh meshOnMaster(const Geometry& geometry, const coarseMeshParameters& pa
     p.regions = parameters.regions;
 
     const wholeMachineAffinity everyCore;
-    partitionVolumeResult volume = meshVolumeWithFallbacks
+    partitionVolumeResult volume = meshVolumeByZone
     (
-        VolumeMesher::NewAll(parameters.mesher), coarse.points, triangles, p,
-        parameters.failedSurfaceFile,
+        VolumeMesher::NewAll(parameters.mesher), coarse.points, triangles,
+        triangleZone, coarse.zones, p, parameters.failedSurfaceFile,
         "Try coarseMesher netgen, or another maxCellSize, in system/pmshDict."
     );
     coarse.points = std::move(volume.mesh.points);
     coarse.tets = std::move(volume.mesh.tets);
+    coarse.cellZone = std::move(volume.tetZone);
     coarse.volumeMesher = volume.backend;
     return coarse;
 }
@@ -124,7 +140,34 @@ void pmsh::releaseGeometry(CoarseMesh& coarse)
     std::vector<point>().swap(coarse.points);
     std::vector<tetCell>().swap(coarse.tets);
     std::vector<coarseBoundaryFace>().swap(coarse.boundary);
+    std::vector<label>().swap(coarse.cellZone);
+    std::vector<coarseZoneFace>().swap(coarse.zoneFaces);
 }
+
+
+namespace
+{
+
+//- Broadcast the master's names as one '\0'-separated buffer.
+void broadcastNames(const pmsh::Communicator& comm, std::vector<std::string>& names)
+{
+    std::vector<char> buffer;
+    for (const std::string& name : names)
+    {
+        buffer.insert(buffer.end(), name.begin(), name.end());
+        buffer.push_back('\0');
+    }
+    comm.broadcast(buffer);
+    names.clear();
+    for (auto it = buffer.begin(); it != buffer.end(); )
+    {
+        auto end = std::find(it, buffer.end(), '\0');
+        names.emplace_back(it, end);
+        it = (end == buffer.end()) ? end : end + 1;
+    }
+}
+
+} // End anonymous namespace
 
 
 void pmsh::broadcastCoarseMesh(const Communicator& comm, CoarseMesh& coarse)
@@ -132,23 +175,51 @@ void pmsh::broadcastCoarseMesh(const Communicator& comm, CoarseMesh& coarse)
     comm.broadcast(coarse.points);
     comm.broadcast(coarse.tets);
     comm.broadcast(coarse.boundary);
+    comm.broadcast(coarse.cellZone);
+    comm.broadcast(coarse.zoneFaces);
+    broadcastNames(comm, coarse.zones);
 
-    // Patch names as one '\0'-separated buffer (the types come from
-    // pmshDict, which every rank reads)
-    std::vector<char> names;
+    // Patch names only: the types come from pmshDict, which every rank reads
+    std::vector<std::string> names;
     for (const meshPatch& p : coarse.patches)
     {
-        names.insert(names.end(), p.name.begin(), p.name.end());
-        names.push_back('\0');
+        names.push_back(p.name);
     }
-    comm.broadcast(names);
+    broadcastNames(comm, names);
     coarse.patches.clear();
-    for (auto it = names.begin(); it != names.end(); )
+    for (const std::string& name : names)
     {
-        auto end = std::find(it, names.end(), '\0');
-        coarse.patches.push_back({std::string(it, end)});
-        it = (end == names.end()) ? end : end + 1;
+        coarse.patches.push_back({name});
     }
+}
+
+
+pmsh::zoneFaceIndex::zoneFaceIndex(const CoarseMesh& coarse)
+{
+    keys_.reserve(coarse.zoneFaces.size());
+    for (std::size_t i = 0; i < coarse.zoneFaces.size(); ++i)
+    {
+        triFace f = coarse.zoneFaces[i].v;
+        std::sort(f.begin(), f.end());
+        keys_.emplace_back(f, label(i));
+    }
+    std::sort(keys_.begin(), keys_.end());
+}
+
+
+pmsh::label pmsh::zoneFaceIndex::find(const triFace& face) const
+{
+    if (keys_.empty())
+    {
+        return -1;
+    }
+    triFace f = face;
+    std::sort(f.begin(), f.end());
+    const auto it = std::lower_bound
+    (
+        keys_.begin(), keys_.end(), std::make_pair(f, label(-1))
+    );
+    return it != keys_.end() && it->first == f ? it->second : -1;
 }
 
 

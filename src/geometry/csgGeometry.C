@@ -142,23 +142,6 @@ pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
     mp.sizePoints = parameters.sizePoints;
     ng::volumeMesh m = model_->generateMesh(mp);
 
-    // Several top-level solids are one region for now (issue 14): say so,
-    // since the surfaces between them are dropped (convertMesh keeps only
-    // faces with the domain on one side)
-    if (m.domainNames.size() > 1)
-    {
-        Info() << "    Warning: " << m.domainNames.size() << " top-level solids (";
-        std::string sep;
-        for (const auto& dn : m.domainNames)
-        {
-            Info() << sep << (dn.second.empty() ? "unnamed" : dn.second);
-            sep = ", ";
-        }
-        Info()
-            << ") are meshed as one region: the surfaces between them are"
-            << " not kept and there are no cellZones\n";
-    }
-
     // Patch name of each bc number: Netgen's bcname, else the name of the
     // top-level solid it bounds, so that the surfaces of one solid without
     // a bcname share one patch ("default" is Netgen's name for "none
@@ -194,12 +177,67 @@ pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
         bcPatch[bp.first] = it->second;
     }
 
+    // One zone per top-level solid that has cells or bounds a surface,
+    // in Netgen's domain order, named after its solid; none for one region
+    std::map<label, label> domainZone;
+    for (const auto& dn : m.domainNames)
+    {
+        domainZone.emplace(dn.first, label(domainZone.size()));
+    }
+    if (domainZone.size() > 1)
+    {
+        for (const auto& [domain, name] : m.domainNames)
+        {
+            std::string zone = name.empty() ? "region" + std::to_string(domain) : name;
+            // Two tlo of one solid: keep the names apart
+            while
+            (
+                std::find(coarse.zones.begin(), coarse.zones.end(), zone)
+             != coarse.zones.end()
+            )
+            {
+                zone += "_" + std::to_string(domain);
+            }
+            coarse.zones.push_back(zone);
+        }
+        coarse.cellZone.reserve(m.tetDomain.size());
+        for (label d : m.tetDomain)
+        {
+            coarse.cellZone.push_back(domainZone.at(d));
+        }
+    }
+    auto zoneOf = [&](label domain)
+    {
+        return coarse.zones.empty() ? 0 : domainZone.at(domain);
+    };
+
     coarse.points = std::move(m.points);
     coarse.tets = std::move(m.tets);
     coarse.boundary.reserve(m.boundary.size());
     for (const ng::boundaryTriangle& b : m.boundary)
     {
-        coarse.boundary.push_back({b.v, bcPatch.at(b.bc), b.surface});
+        coarse.boundary.push_back({b.v, bcPatch.at(b.bc), b.surface, zoneOf(b.domain)});
+    }
+    if (!coarse.zones.empty())
+    {
+        for (const ng::boundaryTriangle& b : m.interfaces)
+        {
+            coarse.zoneFaces.push_back
+            (
+                {b.v, b.surface, zoneOf(b.domain), zoneOf(b.otherDomain)}
+            );
+        }
+    }
+    else if (!m.interfaces.empty())
+    {
+        throw FatalError
+        (
+            msg()
+                << "CSG geometry \"" << fileName_ << "\": Netgen gave "
+                << m.interfaces.size() << " triangles between two domains"
+                << " of a geometry with one top-level solid",
+            "pmsh::csgGeometry::netgenMesh"
+        );
     }
     return coarse;
 }

@@ -292,9 +292,8 @@ void checkBoundary(const pmsh::ng::volumeMesh& m, const std::string& what)
 }
 
 
-//- Drop points used by no tet and no boundary triangle (points of faces
-//  between two domains, in a surface mesh) and renumber the rest in their
-//  order.
+//- Drop points used by no tet and no boundary or interface triangle and
+//  renumber the rest in their order.
 void compactPoints(pmsh::ng::volumeMesh& m)
 {
     using namespace pmsh;
@@ -306,11 +305,14 @@ void compactPoints(pmsh::ng::volumeMesh& m)
             newIndex[p] = 0;
         }
     }
-    for (const auto& b : m.boundary)
+    for (const auto* triangles : {&m.boundary, &m.interfaces})
     {
-        for (label p : b.v)
+        for (const auto& b : *triangles)
         {
-            newIndex[p] = 0;
+            for (label p : b.v)
+            {
+                newIndex[p] = 0;
+            }
         }
     }
     label n = 0;
@@ -334,11 +336,14 @@ void compactPoints(pmsh::ng::volumeMesh& m)
             p = newIndex[p];
         }
     }
-    for (auto& b : m.boundary)
+    for (auto* triangles : {&m.boundary, &m.interfaces})
     {
-        for (label& p : b.v)
+        for (auto& b : *triangles)
         {
-            p = newIndex[p];
+            for (label& p : b.v)
+            {
+                p = newIndex[p];
+            }
         }
     }
     m.points = std::move(points);
@@ -348,8 +353,8 @@ void compactPoints(pmsh::ng::volumeMesh& m)
 //- Points and elements of a Netgen C++ mesh, 0-based. Boundary triangles:
 //  surface elements between a domain and the outside, flipped where
 //  DomainOut is the domain (Netgen's normal points from DomainIn to
-//  DomainOut). Faces between two domains are interior here: all of
-//  Netgen's domains are meshed as one.
+//  DomainOut). Faces between two domains are interfaces, as Netgen gives
+//  them: out of DomainIn. Each tet keeps its domain (Element::GetIndex).
 pmsh::ng::volumeMesh convertMesh(const netgen::Mesh& mesh, const std::string& what)
 {
     using namespace pmsh;
@@ -388,6 +393,7 @@ pmsh::ng::volumeMesh convertMesh(const netgen::Mesh& mesh, const std::string& wh
             label(int(el.PNum(1))) - 1, label(int(el.PNum(2))) - 1,
             label(int(el.PNum(3))) - 1, label(int(el.PNum(4))) - 1
         });
+        m.tetDomain.push_back(label(el.GetIndex()));
     }
 
     const int nse = int(mesh.GetNSE());
@@ -412,10 +418,9 @@ pmsh::ng::volumeMesh convertMesh(const netgen::Mesh& mesh, const std::string& wh
         const netgen::FaceDescriptor& fd = mesh.GetFaceDescriptor(el.GetIndex());
         const bool inside = fd.DomainIn() > 0;
         const bool outside = fd.DomainOut() > 0;
-        if (inside == outside)
+        if (!inside && !outside)
         {
-            // Between two domains (interior here), or bounding no domain
-            continue;
+            continue;   // bounding no domain
         }
         ng::boundaryTriangle b;
         b.v =
@@ -424,6 +429,16 @@ pmsh::ng::volumeMesh convertMesh(const netgen::Mesh& mesh, const std::string& wh
             label(int(el.PNum(2))) - 1,
             label(int(el.PNum(3))) - 1
         };
+        if (inside && outside)
+        {
+            // Between two domains
+            b.bc = fd.BCProperty();
+            b.surface = fd.SurfNr();
+            b.domain = fd.DomainIn();
+            b.otherDomain = fd.DomainOut();
+            m.interfaces.push_back(b);
+            continue;
+        }
         if (outside)
         {
             // Normal points into the domain: flip
@@ -950,15 +965,24 @@ pmsh::ng::volumeMesh pmsh::ng::csgModel::generateMesh
     // A CSG domain is a top-level object plus one (Netgen's face
     // descriptors number them so: csg/genmesh.cpp compares DomainIn() with
     // tlonr + 1)
-    for (const boundaryTriangle& b : m.boundary)
+    auto nameDomain = [&](label domain)
     {
-        if (!m.domainNames.count(b.domain))
+        if (!m.domainNames.count(domain))
         {
             const netgen::TopLevelObject* tlo =
-                impl_->geometry->GetTopLevelObject(int(b.domain) - 1);
+                impl_->geometry->GetTopLevelObject(int(domain) - 1);
             const netgen::Solid* solid = tlo ? tlo->GetSolid() : nullptr;
-            m.domainNames[b.domain] = solid ? solid->Name() : "";
+            m.domainNames[domain] = solid ? solid->Name() : "";
         }
+    };
+    for (const boundaryTriangle& b : m.boundary)
+    {
+        nameDomain(b.domain);
+    }
+    for (const boundaryTriangle& b : m.interfaces)
+    {
+        nameDomain(b.domain);
+        nameDomain(b.otherDomain);
     }
 
     return m;

@@ -46,6 +46,76 @@ bool faceContains(const tetCell& t, int f, const std::vector<label>& entity)
 }
 
 
+// With zones, a part is meshed zone by zone (meshVolumeByZone), so every
+// piece (part, zone) must be a manifold. The repair and the balance work
+// on pieces: a cell's key is part*nZones + zone, and the faces between two
+// zones count as boundary (the pieces on their two sides are meshed
+// apart). Without zones a key is the part.
+class zonePieces
+{
+public:
+
+    explicit zonePieces(const CoarseMesh& coarse)
+    :
+        coarse_(coarse),
+        nZones_(coarse.nZones())
+    {}
+
+    label key(label part, label cell) const
+    {
+        return part*nZones_ + coarse_.zoneOf(cell);
+    }
+
+    label part(label key) const { return key/nZones_; }
+
+    //- The key of part(to) for cell c (in c's zone)
+    label moved(label cell, label to) const { return key(part(to), cell); }
+
+    std::vector<label> keys(const std::vector<label>& cellPart) const
+    {
+        std::vector<label> k(cellPart.size());
+        for (std::size_t c = 0; c < k.size(); ++c)
+        {
+            k[c] = key(cellPart[c], label(c));
+        }
+        return k;
+    }
+
+    void toParts(const std::vector<label>& keys, std::vector<label>& cellPart) const
+    {
+        for (std::size_t c = 0; c < keys.size(); ++c)
+        {
+            cellPart[c] = part(keys[c]);
+        }
+    }
+
+    //- The coarse face neighbours, a face between zones as boundary
+    std::vector<faceNeighbours> neighbours() const
+    {
+        std::vector<faceNeighbours> n = coarseFaceNeighbours(coarse_);
+        if (nZones_ > 1)
+        {
+            for (label c = 0; c < label(n.size()); ++c)
+            {
+                for (label& nbr : n[c])
+                {
+                    if (!isBoundaryNeighbour(nbr) && coarse_.zoneOf(nbr) != coarse_.zoneOf(c))
+                    {
+                        nbr = -1;
+                    }
+                }
+            }
+        }
+        return n;
+    }
+
+private:
+
+    const CoarseMesh& coarse_;
+    const label nZones_;
+};
+
+
 // Face-connected components among `cells` (the cells around an entity)
 // restricted to those with inRegion; returns the component of each cell
 // (-1 when not in the region). Cells around an entity that share a face
@@ -166,14 +236,40 @@ label neighbourPart
 label repairPass
 (
     const CoarseMesh& coarse,
+    const zonePieces& pieces,
     const std::vector<faceNeighbours>& neighbours,
     const coarsePointCells& vc,
     std::vector<label>& cellPart,
     bool doMove,
+    bool absorb,
     label& moved
 )
 {
     label nDefects = 0;
+
+    // A defect the usual moves took back and forth (two places each
+    // wanting the same cells): the cells of p's zone around the entity all
+    // go to the lowest part among them. Cells only ever move to lower
+    // parts here, so this ends.
+    auto absorbAround = [&](const std::vector<label>& cells, label p)
+    {
+        label lowest = pieces.part(p);
+        for (label c : cells)
+        {
+            if (pieces.moved(c, p) == p)
+            {
+                lowest = std::min(lowest, pieces.part(cellPart[c]));
+            }
+        }
+        for (label c : cells)
+        {
+            if (pieces.moved(c, p) == p && pieces.part(cellPart[c]) != lowest)
+            {
+                cellPart[c] = pieces.key(lowest, c);
+                ++moved;
+            }
+        }
+    };
 
     auto checkEntity = [&](const std::vector<label>& entity, const std::vector<label>& cells)
     {
@@ -204,7 +300,11 @@ label repairPass
             if (nComp > 1)
             {
                 ++nDefects;
-                if (doMove)
+                if (doMove && absorb)
+                {
+                    absorbAround(cells, p);
+                }
+                else if (doMove)
                 {
                     // Keep the largest group, hand the others to a neighbour
                     std::vector<label> size(nComp, 0);
@@ -222,7 +322,7 @@ label repairPass
                         if (to < 0) to = (parts[0] == p ? parts[1] : parts[0]);
                         for (label c : group)
                         {
-                            cellPart[c] = to;
+                            cellPart[c] = pieces.moved(c, to);
                             ++moved;
                         }
                     }
@@ -247,7 +347,11 @@ label repairPass
             if (nComp > 1)
             {
                 ++nDefects;
-                if (doMove)
+                if (doMove && absorb)
+                {
+                    absorbAround(cells, p);
+                }
+                else if (doMove)
                 {
                     // Fill the holes (groups not reaching the outside, all
                     // but the largest if none does) with the part's cells
@@ -264,7 +368,7 @@ label repairPass
                     {
                         if (otherComp[i] >= 0 && otherComp[i] != keep)
                         {
-                            cellPart[cells[i]] = p;
+                            cellPart[cells[i]] = pieces.moved(cells[i], p);
                             ++moved;
                         }
                     }
@@ -308,9 +412,11 @@ label repairPass
 
 
 // Give every empty part one cell of the largest part, taken from where
-// that part touches another (so the rest of it stays in one piece)
+// that part touches another (so the rest of it stays in one piece).
+// cellPart holds the pieces' keys.
 label fillEmptyParts
 (
+    const zonePieces& pieces,
     const std::vector<faceNeighbours>& neighbours,
     label nParts,
     std::vector<label>& cellPart
@@ -320,7 +426,7 @@ label fillEmptyParts
     for (label q = 0; q < nParts; ++q)
     {
         std::vector<label> size(nParts, 0);
-        for (label p : cellPart) ++size[p];
+        for (label k : cellPart) ++size[pieces.part(k)];
         if (size[q] > 0)
         {
             continue;
@@ -329,17 +435,18 @@ label fillEmptyParts
         label pick = -1;
         for (label c = 0; c < label(cellPart.size()) && pick < 0; ++c)
         {
-            if (cellPart[c] != largest) continue;
+            if (pieces.part(cellPart[c]) != largest) continue;
             for (label nbr : neighbours[c])
             {
-                if (isBoundaryNeighbour(nbr) || cellPart[nbr] != largest)
+                if (isBoundaryNeighbour(nbr) || cellPart[nbr] != cellPart[c])
                 {
                     pick = c;
                     break;
                 }
             }
         }
-        cellPart[pick < 0 ? 0 : pick] = q;
+        pick = pick < 0 ? 0 : pick;
+        cellPart[pick] = pieces.key(q, pick);
         ++moved;
     }
     return moved;
@@ -437,20 +544,30 @@ pmsh::label pmsh::repairPartition
     std::vector<label>& cellPart
 )
 {
-    const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
+    const zonePieces pieces(coarse);
+    const std::vector<faceNeighbours> neighbours = pieces.neighbours();
     const coarsePointCells vc(coarse);
+    std::vector<label> keys = pieces.keys(cellPart);
 
+    // After absorbAfter passes a part takes the cells around a place where
+    // it falls apart, instead of giving its smaller pieces away: a defect
+    // left by then is one the moves took back and forth
+    const int absorbAfter = 20;
     label moved = 0;
     const int maxPasses = 50;
     for (int pass = 0; pass < maxPasses; ++pass)
     {
-        const label filled = fillEmptyParts(neighbours, nParts, cellPart);
+        const label filled = fillEmptyParts(pieces, neighbours, nParts, keys);
         moved += filled;
         label passMoved = 0;
-        const label nDefects = repairPass(coarse, neighbours, vc, cellPart, true, passMoved);
+        const label nDefects = repairPass
+        (
+            coarse, pieces, neighbours, vc, keys, true, pass >= absorbAfter, passMoved
+        );
         moved += passMoved;
         if (nDefects == 0 && filled == 0)
         {
+            pieces.toParts(keys, cellPart);
             return moved;
         }
     }
@@ -472,10 +589,14 @@ pmsh::label pmsh::countNonManifoldParts
     const std::vector<label>& cellPart
 )
 {
-    const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
-    std::vector<label> parts = cellPart;
+    const zonePieces pieces(coarse);
+    std::vector<label> keys = pieces.keys(cellPart);
     label moved = 0;
-    return repairPass(coarse, neighbours, coarsePointCells(coarse), parts, false, moved);
+    return repairPass
+    (
+        coarse, pieces, pieces.neighbours(), coarsePointCells(coarse), keys,
+        false, false, moved
+    );
 }
 
 
@@ -494,8 +615,11 @@ pmsh::label pmsh::balancePartition
     {
         return 0;
     }
-    const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
+    // Loads are the parts'; cells move between pieces of one zone
+    const zonePieces pieces(coarse);
+    const std::vector<faceNeighbours> neighbours = pieces.neighbours();
     const coarsePointCells vc(coarse);
+    std::vector<label> keys = pieces.keys(cellPart);
 
     std::vector<double> load(nParts, 0);
     std::vector<label> size(nParts, 0);
@@ -559,8 +683,9 @@ pmsh::label pmsh::balancePartition
             if (load[p] <= target || size[p] <= 1) break;
             const double w = weights[m.cell];
             if (cellPart[m.cell] != p || load[m.to] + w >= load[p]) continue;
-            if (moveIfManifold(coarse, neighbours, vc, m.cell, m.to, cellPart))
+            if (moveIfManifold(coarse, neighbours, vc, m.cell, pieces.key(m.to, m.cell), keys))
             {
+                cellPart[m.cell] = m.to;
                 load[p] -= w;
                 load[m.to] += w;
                 --size[p];

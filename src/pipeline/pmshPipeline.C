@@ -29,7 +29,9 @@ pmsh::volumeMeshParameters pmsh::volumeParameters
     p.interfaceTriangles.resize(surface.region.size());
     for (std::size_t t = 0; t < surface.region.size(); ++t)
     {
-        p.interfaceTriangles[t] = isInterfaceRegion(surface.region[t]);
+        // Cells lie behind processor faces and faces between zones
+        p.interfaceTriangles[t] =
+            isInterfaceRegion(surface.region[t]) || isBetweenZones(surface.region[t]);
     }
     p.what = "partition " + std::to_string(rank);
     const double toFine = double(1 << settings.refinementLevels);
@@ -42,6 +44,42 @@ pmsh::volumeMeshParameters pmsh::volumeParameters
     p.optimisationSteps = settings.optimisationSteps;
     p.threads = settings.volumeMesherThreads;
     return p;
+}
+
+
+std::vector<std::array<pmsh::label, 2>> pmsh::zonePairsOf(const CoarseMesh& coarse)
+{
+    std::vector<std::array<label, 2>> pairs;
+    for (const coarseZoneFace& f : coarse.zoneFaces)
+    {
+        pairs.push_back({std::min(f.inside, f.outside), std::max(f.inside, f.outside)});
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    return pairs;
+}
+
+
+void pmsh::dropFacesBetweenZones(FineSurface& surface)
+{
+    if (surface.zone.empty())
+    {
+        return;
+    }
+    std::size_t kept = 0;
+    for (std::size_t t = 0; t < surface.triangles.size(); ++t)
+    {
+        if (!isBetweenZones(surface.region[t]))
+        {
+            surface.triangles[kept] = surface.triangles[t];
+            surface.region[kept] = surface.region[t];
+            surface.zone[kept] = surface.zone[t];
+            ++kept;
+        }
+    }
+    surface.triangles.resize(kept);
+    surface.region.resize(kept);
+    surface.zone.resize(kept);
 }
 
 
@@ -69,6 +107,21 @@ void pmsh::logCoarseMesh(const CoarseMesh& coarse)
         Info() << ' ' << p.name;
     }
     Info() << '\n';
+    if (coarse.zones.empty())
+    {
+        return;
+    }
+    std::vector<label> cells(coarse.zones.size(), 0);
+    for (label z : coarse.cellZone)
+    {
+        ++cells[z];
+    }
+    Info() << "    zones (cellZones, coarse cells):";
+    for (std::size_t z = 0; z < coarse.zones.size(); ++z)
+    {
+        Info() << ' ' << coarse.zones[z] << " (" << cells[z] << ')';
+    }
+    Info() << "\n    coarse faces between zones: " << coarse.zoneFaces.size() << '\n';
 }
 
 

@@ -2,11 +2,13 @@
 #include "pmshError.H"
 
 #include "processorPolyPatch.H"
+#include "syncTools.H"
 #include "labelIOList.H"
 #include "faceIOList.H"
 #include "UPstream.H"
 
 #include <algorithm>
+#include <map>
 #include <cstdlib>
 
 namespace
@@ -95,6 +97,107 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
         }
     }
     mesh_->addFvPatches(patches, false);
+    addZones(mesh);
+}
+
+
+std::string pmsh::zonePairName(const std::string& a, const std::string& b)
+{
+    return a + "_to_" + b;
+}
+
+
+void pmsh::foamRankMesh::addZones(const tetPolyMesh& mesh)
+{
+    using namespace Foam;
+
+    if (mesh.zoneNames.empty())
+    {
+        return;
+    }
+
+    const label nZones = label(mesh.zoneNames.size());
+    labelList zoneOfCell(mesh_->nCells());
+    List<DynamicList<label>> cells(nZones);
+    forAll(zoneOfCell, celli)
+    {
+        zoneOfCell[celli] = mesh.cellZone[celli];
+        cells[zoneOfCell[celli]].append(celli);
+    }
+    List<cellZone*> cellZones(nZones);
+    forAll(cellZones, z)
+    {
+        cellZones[z] = new cellZone
+        (
+            mesh.zoneNames[z], cells[z].shrink(), z, mesh_->cellZones()
+        );
+    }
+
+    // The zone across every boundary face (the neighbour rank's cell
+    // across a processor face)
+    labelList zoneAcross;
+    syncTools::swapBoundaryCellList(*mesh_, zoneOfCell, zoneAcross);
+
+    std::map<std::pair<label, label>, label> pairIndex;
+    for (const auto& pair : mesh.zonePairs)
+    {
+        pairIndex.emplace(std::make_pair(pair[0], pair[1]), label(pairIndex.size()));
+    }
+    List<DynamicList<label>> faces(pairIndex.size());
+    List<DynamicList<bool>> flips(pairIndex.size());
+    auto addFace = [&](label facei, label ownZone, label otherZone)
+    {
+        if (ownZone == otherZone)
+        {
+            return;
+        }
+        const auto pair = std::minmax(ownZone, otherZone);
+        const auto it = pairIndex.find({pair.first, pair.second});
+        if (it == pairIndex.end())
+        {
+            throw pmsh::FatalError
+            (
+                msg() << "Zones " << mesh.zoneNames[pair.first] << " and "
+                    << mesh.zoneNames[pair.second] << " meet at face " << facei
+                    << " but the coarse mesh has no face between them",
+                "pmsh::foamRankMesh::addZones"
+            );
+        }
+        faces[it->second].append(facei);
+        flips[it->second].append(ownZone != pair.first);
+    };
+    const labelList& own = mesh_->faceOwner();
+    const labelList& nei = mesh_->faceNeighbour();
+    for (label facei = 0; facei < mesh_->nInternalFaces(); ++facei)
+    {
+        addFace(facei, zoneOfCell[own[facei]], zoneOfCell[nei[facei]]);
+    }
+    for (const polyPatch& pp : mesh_->boundaryMesh())
+    {
+        if (pp.coupled())
+        {
+            forAll(pp, i)
+            {
+                const label facei = pp.start() + i;
+                addFace
+                (
+                    facei, zoneOfCell[own[facei]],
+                    zoneAcross[facei - mesh_->nInternalFaces()]
+                );
+            }
+        }
+    }
+
+    List<faceZone*> faceZones(pairIndex.size());
+    for (const auto& [pair, z] : pairIndex)
+    {
+        faceZones[z] = new faceZone
+        (
+            zonePairName(mesh.zoneNames[pair.first], mesh.zoneNames[pair.second]),
+            faces[z].shrink(), boolList(flips[z]), z, mesh_->faceZones()
+        );
+    }
+    mesh_->addZones(List<pointZone*>(), faceZones, cellZones);
 }
 
 

@@ -1,4 +1,5 @@
 #include "partitionSurface.H"
+#include "pmshError.H"
 
 pmsh::coarsePartSurface pmsh::partitionSurface
 (
@@ -10,13 +11,27 @@ pmsh::coarsePartSurface pmsh::partitionSurface
     auto partOf = [&](label cell) { return cellPart.empty() ? 0 : cellPart[cell]; };
     const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
 
+    const bool zoned = !coarse.zones.empty();
+    const zoneFaceIndex zoneFaces(coarse);
+
     coarsePartSurface surf;
+    auto add = [&](const triFace& f, label region, label surface, label zone)
+    {
+        surf.faces.push_back(f);
+        surf.region.push_back(region);
+        surf.surface.push_back(surface);
+        if (zoned)
+        {
+            surf.zone.push_back(zone);
+        }
+    };
     for (label celli = 0; celli < coarse.nCells(); ++celli)
     {
         if (partOf(celli) != myPart)
         {
             continue;
         }
+        const label zone = coarse.zoneOf(celli);
         const auto faces = outwardTetFaces(coarse.tets[celli]);
         for (int fi = 0; fi < 4; ++fi)
         {
@@ -24,16 +39,38 @@ pmsh::coarsePartSurface pmsh::partitionSurface
             if (isBoundaryNeighbour(nbr))
             {
                 const coarseBoundaryFace& bf = coarse.boundary[boundaryFaceOf(nbr)];
-                surf.faces.push_back(faces[fi]);
-                surf.region.push_back(bf.patch);
-                surf.surface.push_back(bf.surface);
+                add(faces[fi], bf.patch, bf.surface, zone);
+                continue;
             }
-            else if (partOf(nbr) != myPart)
+            const bool otherPart = partOf(nbr) != myPart;
+            const bool otherZone = coarse.zoneOf(nbr) != zone;
+            if (!otherPart && !otherZone)
             {
-                surf.faces.push_back(faces[fi]);
-                surf.region.push_back(interfaceRegion(partOf(nbr)));
-                surf.surface.push_back(-1);
+                continue;
             }
+            label surface = -1;
+            if (otherZone)
+            {
+                const label z = zoneFaces.find(faces[fi]);
+                if (z < 0)
+                {
+                    throw FatalError
+                    (
+                        msg() << "Coarse cells " << celli << " and " << nbr
+                            << " of zones " << coarse.zones[zone] << " and "
+                            << coarse.zones[coarse.zoneOf(nbr)] << " share a"
+                            << " face that is not a face between zones",
+                        "partitionSurface"
+                    );
+                }
+                surface = coarse.zoneFaces[z].surface;
+            }
+            add
+            (
+                faces[fi],
+                otherPart ? interfaceRegion(partOf(nbr)) : betweenZonesRegion,
+                surface, zone
+            );
         }
     }
     return surf;

@@ -12,23 +12,49 @@
 
 // * * * * * * * * * * * * * * boundaryEdgeSurfaces  * * * * * * * * * * * * //
 
-pmsh::boundaryEdgeSurfaces::boundaryEdgeSurfaces(const CoarseMesh& coarse)
+pmsh::boundaryEdgeSurfaces::boundaryEdgeSurfaces
+(
+    const CoarseMesh& coarse,
+    const Geometry* geometry
+)
 {
-    // Edge k of boundary face b is 3*b + k; each appears twice, once per
-    // face of the closed boundary. Groups come in (p, q) order.
+    // Edge k of face b is 3*b + k, boundary faces first, then the faces
+    // between zones. A boundary edge away from zones has exactly two
+    // faces. Groups come in (p, q) order.
+    const matchId nBoundary = matchId(coarse.boundary.size());
+    auto faceOf = [&](matchId face) -> const triFace&
+    {
+        return face < nBoundary
+            ? coarse.boundary[face].v : coarse.zoneFaces[face - nBoundary].v;
+    };
+    auto surfaceOf = [&](matchId face)
+    {
+        return face < nBoundary
+            ? coarse.boundary[face].surface
+            : coarse.zoneFaces[face - nBoundary].surface;
+    };
     auto edgeOf = [&](matchId id)
     {
-        const triFace& f = coarse.boundary[id/3].v;
+        const triFace& f = faceOf(id/3);
         return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
     };
     edges_.reserve(3*coarse.boundary.size()/2);
     forEachSamePointsGroup
     (
-        coarse.points.size(), matchId(3*coarse.boundary.size()), edgeOf,
+        coarse.points.size(),
+        matchId(3*(coarse.boundary.size() + coarse.zoneFaces.size())),
+        edgeOf,
         [&](const matchId* ids, std::size_t n)
         {
             const auto e = sortedPoints(edgeOf(ids[0]));
-            if (n != 2)
+            std::vector<label> surfaces;
+            std::size_t nBoundaryFaces = 0;
+            for (std::size_t i = 0; i < n; ++i)
+            {
+                nBoundaryFaces += ids[i]/3 < nBoundary;
+                surfaces.push_back(surfaceOf(ids[i]/3));
+            }
+            if (nBoundaryFaces == n && n != 2)
             {
                 throw FatalError
                 (
@@ -38,9 +64,40 @@ pmsh::boundaryEdgeSurfaces::boundaryEdgeSurfaces(const CoarseMesh& coarse)
                     "boundaryEdgeSurfaces"
                 );
             }
-            const label s1 = coarse.boundary[ids[0]/3].surface;
-            const label s2 = coarse.boundary[ids[1]/3].surface;
-            edges_.push_back({e[0], e[1], std::min(s1, s2), std::max(s1, s2)});
+            std::sort(surfaces.begin(), surfaces.end());
+            surfaces.erase(std::unique(surfaces.begin(), surfaces.end()), surfaces.end());
+            label s1 = surfaces.front();
+            label s2 = surfaces.size() > 1 ? surfaces[1] : s1;
+            if (surfaces.size() > 2 && geometry)
+            {
+                // The first pair whose curve lies on all the surfaces here
+                // (two of them may be one plane, given twice)
+                const point mid = midPoint(coarse.points[e[0]], coarse.points[e[1]]);
+                const double tolerance =
+                    1e-6*std::sqrt(magSqr(coarse.points[e[1]] - coarse.points[e[0]]));
+                s1 = s2 = -1;
+                for (std::size_t i = 0; i < surfaces.size() && s1 < 0; ++i)
+                {
+                    for (std::size_t j = i + 1; j < surfaces.size() && s1 < 0; ++j)
+                    {
+                        const point q = geometry->projectToEdge(mid, surfaces[i], surfaces[j]);
+                        double off = 0;
+                        for (label s : surfaces)
+                        {
+                            off = std::max
+                            (
+                                off, std::sqrt(magSqr(q - geometry->projectToSurface(q, s)))
+                            );
+                        }
+                        if (off < tolerance)
+                        {
+                            s1 = surfaces[i];
+                            s2 = surfaces[j];
+                        }
+                    }
+                }
+            }
+            edges_.push_back({e[0], e[1], s1, s2});
         }
     );
 }
@@ -171,9 +228,9 @@ void fillFace
         const label a = (k == 0) ? v[1] : v[0];
         const label b = (j == 0) ? v[1] : v[2];
         label s1, s2;
-        if (!edgeSurfaces.find(a, b, s1, s2) || edgeOff(a, b))
+        if (!edgeSurfaces.find(a, b, s1, s2) || s1 < 0 || edgeOff(a, b))
         {
-            return p;   // an edge inside the domain, or left linear
+            return p;   // an edge inside a zone, or left linear
         }
         return s1 == s2
             ? geometry->projectToSurface(p, s1)
@@ -252,6 +309,11 @@ pmsh::foldRepair::foldRepair
         const faceKey f = sortedFace(b.v);
         boundarySurface_[f] = {b.surface, !sameOrientation(f, b.v)};
     }
+    for (const coarseZoneFace& z : coarse.zoneFaces)
+    {
+        const faceKey f = sortedFace(z.v);
+        boundarySurface_[f] = {z.surface, !sameOrientation(f, z.v)};
+    }
     // Every face of every tet that holds a boundary edge: all ranks hold
     // the whole coarse mesh, so all see the same faces around an edge
     for (const tetCell& t : coarse.tets)
@@ -292,7 +354,8 @@ std::array<pmsh::triFace, 2> pmsh::foldRepair::boundaryFacesOf(label p, label q)
     const auto it = facesAround_.find(sortedEdge(p, q));
     if (it != facesAround_.end())
     {
-        // Sorted, so the lower triple comes first
+        // Sorted, so the lower triple comes first (where zones meet, more
+        // than two faces on the geometry share the edge: the first two)
         for (const faceKey& f : it->second)
         {
             if (nFound < 2 && surfaceOf(f) >= 0)
@@ -413,7 +476,7 @@ bool pmsh::foldRepair::latticeFolds(const faceKey& f, int round) const
 bool pmsh::foldRepair::foldsAcross(const edgeKey& e, int round) const
 {
     label s1, s2;
-    if (!geometry_ || !edgeSurfaces_.find(e[0], e[1], s1, s2) || s1 != s2)
+    if (!geometry_ || !edgeSurfaces_.find(e[0], e[1], s1, s2) || s1 != s2 || s1 < 0)
     {
         return false;   // a feature edge may be as sharp as it likes
     }
@@ -538,6 +601,9 @@ pmsh::FineSurface pmsh::refineSurface
     // are looked up by id; points inside a face belong to that face alone.
     std::unordered_map<barycentricId, label, barycentricIdHash> sharedPoints;
     sharedPoints.reserve(nCoarseFaces*(3*n/2 + 1));
+    // A face between two zones of the part comes twice: the second time
+    // it takes the first one's points
+    std::map<triFace, std::vector<label>> betweenZonesPoints;
 
     faceLattice lattice(levels);
     std::vector<label> latticePoint((n + 1)*(n + 1));
@@ -601,13 +667,9 @@ pmsh::FineSurface pmsh::refineSurface
         }
     };
 
-    for (label facei = 0; facei < nCoarseFaces; ++facei)
+    // The points of the face with sorted points v, into latticePoint
+    auto makeFacePoints = [&](const triFace& v, label faceSurface)
     {
-        const triFace& f = partSurface.faces[facei];
-        triFace v = f;
-        std::sort(v.begin(), v.end());
-        const label faceSurface = partSurface.surface[facei];
-
         std::vector<point> positions;
         if (repair)
         {
@@ -652,6 +714,30 @@ pmsh::FineSurface pmsh::refineSurface
                 latticePoint[j*(n + 1) + i] = pointi;
             }
         }
+    };
+
+    for (label facei = 0; facei < nCoarseFaces; ++facei)
+    {
+        const triFace& f = partSurface.faces[facei];
+        triFace v = f;
+        std::sort(v.begin(), v.end());
+        if (!isBetweenZones(partSurface.region[facei]))
+        {
+            makeFacePoints(v, partSurface.surface[facei]);
+        }
+        else
+        {
+            const auto seen = betweenZonesPoints.find(v);
+            if (seen != betweenZonesPoints.end())
+            {
+                latticePoint = seen->second;
+            }
+            else
+            {
+                makeFacePoints(v, partSurface.surface[facei]);
+                betweenZonesPoints.emplace(v, latticePoint);
+            }
+        }
 
         // Triangles of the lattice, oriented like (v0, v1, v2); flipped to
         // the coarse face's outward orientation where that differs
@@ -662,6 +748,10 @@ pmsh::FineSurface pmsh::refineSurface
             const label a = P(i0, j0), b = P(i1, j1), c = P(i2, j2);
             fine.triangles.push_back(flip ? triFace{a, c, b} : triFace{a, b, c});
             fine.region.push_back(partSurface.region[facei]);
+            if (!partSurface.zone.empty())
+            {
+                fine.zone.push_back(partSurface.zone[facei]);
+            }
         });
     }
     return fine;
@@ -716,7 +806,7 @@ pmsh::FineSurface pmsh::refinePartSurface
     const coarsePartSurface partSurface = partitionSurface(coarse, cellPart, part);
     FineSurface fine = refineSurface
     (
-        coarse, partSurface, boundaryEdgeSurfaces(coarse), geometry, levels
+        coarse, partSurface, boundaryEdgeSurfaces(coarse, geometry), geometry, levels
     );
     const label nFolded = countFoldedTriangles(coarse, partSurface, fine, levels);
     if (nFolded > 0)
@@ -743,7 +833,9 @@ pmsh::FineSurface pmsh::refinePartSurface
                     const label region = partSurface.region[facei];
                     where = "at " + str((1.0/3.0)*(a + b + c)) + " on "
                       + (
-                            isInterfaceRegion(region)
+                            isBetweenZones(region)
+                          ? std::string("a face between two zones")
+                          : isInterfaceRegion(region)
                           ? "the interface with part " + std::to_string(-region - 1)
                           : "patch " + coarse.patches[region].name
                         );

@@ -147,3 +147,117 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
         "meshVolumeWithFallbacks"
     );
 }
+
+
+pmsh::partitionVolumeResult pmsh::meshVolumeByZone
+(
+    const std::vector<std::unique_ptr<VolumeMesher>>& meshers,
+    const std::vector<point>& surfacePoints,
+    const std::vector<triFace>& surfaceTriangles,
+    const std::vector<label>& triangleZone,
+    const std::vector<std::string>& zoneNames,
+    const volumeMeshParameters& parameters,
+    const std::string& failedSurfaceFile,
+    const std::string& advice
+)
+{
+    if (triangleZone.empty())
+    {
+        return meshVolumeWithFallbacks
+        (
+            meshers, surfacePoints, surfaceTriangles, parameters,
+            failedSurfaceFile, advice
+        );
+    }
+
+    partitionVolumeResult joined;
+    joined.mesh.points = surfacePoints;
+    joined.minDihedral = 180;
+    joined.attempts = 0;
+    const label nZones = label(zoneNames.size());
+    for (label zone = 0; zone < nZones; ++zone)
+    {
+        // The zone's triangles, its points renumbered in their order (so
+        // the local surface points keep the global order)
+        std::vector<label> local(surfacePoints.size(), -1);
+        std::vector<triFace> triangles;
+        volumeMeshParameters p = parameters;
+        p.interfaceTriangles.clear();
+        for (std::size_t t = 0; t < surfaceTriangles.size(); ++t)
+        {
+            if (triangleZone[t] == zone)
+            {
+                triangles.push_back(surfaceTriangles[t]);
+                for (label v : surfaceTriangles[t])
+                {
+                    local[v] = 0;
+                }
+                if (!parameters.interfaceTriangles.empty())
+                {
+                    p.interfaceTriangles.push_back(parameters.interfaceTriangles[t]);
+                }
+            }
+        }
+        if (triangles.empty())
+        {
+            continue;
+        }
+        std::vector<label> global;
+        std::vector<point> points;
+        for (std::size_t v = 0; v < local.size(); ++v)
+        {
+            if (local[v] == 0)
+            {
+                local[v] = label(global.size());
+                global.push_back(label(v));
+                points.push_back(surfacePoints[v]);
+            }
+        }
+        for (triFace& t : triangles)
+        {
+            for (label& v : t)
+            {
+                v = local[v];
+            }
+        }
+
+        p.what = parameters.what + ", zone " + zoneNames[zone];
+        const std::filesystem::path file(failedSurfaceFile);
+        partitionVolumeResult part = meshVolumeWithFallbacks
+        (
+            meshers, points, triangles, p,
+            (file.parent_path()/(file.stem().string() + "_" + zoneNames[zone]
+          + file.extension().string())).string(),
+            advice
+        );
+
+        // Interior points follow the surface points of every zone before
+        for (std::size_t v = points.size(); v < part.mesh.points.size(); ++v)
+        {
+            global.push_back(label(joined.mesh.points.size()));
+            joined.mesh.points.push_back(part.mesh.points[v]);
+        }
+        for (const tetCell& t : part.mesh.tets)
+        {
+            joined.mesh.tets.push_back
+            ({global[t[0]], global[t[1]], global[t[2]], global[t[3]]});
+            joined.tetZone.push_back(zone);
+        }
+        // The backend reported is that of the zone that needed most attempts
+        if (part.attempts > joined.attempts)
+        {
+            joined.backend = part.backend;
+            joined.attempts = part.attempts;
+        }
+        if (!part.failures.empty())
+        {
+            joined.failures += "\n  zone " + zoneNames[zone] + ":" + part.failures;
+        }
+        joined.minDihedral = std::min(joined.minDihedral, part.minDihedral);
+        joined.maxDihedral = std::max(joined.maxDihedral, part.maxDihedral);
+        joined.maxAspectRatio = std::max(joined.maxAspectRatio, part.maxAspectRatio);
+    }
+    joined.nCells = label(joined.mesh.tets.size());
+    joined.attempts = std::max(joined.attempts, 1);
+    return joined;
+}
