@@ -18,7 +18,9 @@ Description
     r levels of refinement of each partition's surface with projection onto
     the geometry, volume remeshing of each partition (Netgen or HXT), and
     global point numbering through integer barycentric ids (no
-    floating-point matching).
+    floating-point matching). Several CSG top-level solids become
+    cellZones, the surfaces between them faceZones (splitMeshRegions
+    -cellZones makes regions of them).
 
     Serial runs write constant/polyMesh. Parallel runs write
     processorN/constant/polyMesh (or processors<N>/ with the collated
