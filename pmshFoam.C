@@ -58,6 +58,7 @@ Usage
 
 #include "caseOutput.H"
 #include "coarseMesh.H"
+#include "cyclicFaces.H"
 #include "Communicator.H"
 #include "failTogether.H"
 #include "fieldTemplates.H"
@@ -340,6 +341,12 @@ int main(int argc, char *argv[])
         (
             comm, coarse, cellPart, surface, pmsh::label(tets.points.size())
         );
+        // Where each periodic face's image is: needs the coarse mesh
+        pmsh::periodicFaceParts periodicParts;
+        pmsh::failTogether(comm, [&]
+        {
+            periodicParts = pmsh::periodicPartsOf(coarse, cellPart);
+        });
         const pmsh::label nCoarseCells = coarse.nCells();
         pmsh::releaseGeometry(coarse);
         std::vector<pmsh::label>().swap(cellPart);
@@ -364,6 +371,10 @@ int main(int argc, char *argv[])
                 numbering.globalIds()
             );
             tets = pmsh::TetMesh();
+            pmsh::orderCyclicFaces
+            (
+                rankMesh, surface.ids, coarse, periodicParts, comm.rank()
+            );
             rankMesh.zoneNames = coarse.zones;
             rankMesh.cellZone = std::move(volume.tetZone);
             rankMesh.zonePairs = zonePairs;

@@ -178,6 +178,8 @@ void pmsh::broadcastCoarseMesh(const Communicator& comm, CoarseMesh& coarse)
     comm.broadcast(coarse.cellZone);
     comm.broadcast(coarse.zoneFaces);
     broadcastNames(comm, coarse.zones);
+    comm.broadcast(coarse.periodicPatches);
+    comm.broadcast(coarse.periodicPoints);
 
     // Patch names only: the types come from pmshDict, which every rank reads
     std::vector<std::string> names;

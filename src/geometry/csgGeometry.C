@@ -8,6 +8,7 @@
 #include "pmshError.H"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -239,7 +240,144 @@ pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
             "pmsh::csgGeometry::netgenMesh"
         );
     }
+    setPeriodicPatches(coarse, m.periodicPoints);
     return coarse;
+}
+
+
+void pmsh::csgGeometry::setPeriodicPatches
+(
+    CoarseMesh& coarse,
+    const std::vector<std::array<label, 2>>& pairs
+) const
+{
+    if (pairs.empty())
+    {
+        return;
+    }
+    const char* function = "pmsh::csgGeometry::setPeriodicPatches";
+    auto cannot = [&](const std::string& why)
+    {
+        return FatalError
+        (
+            msg()
+                << "CSG geometry \"" << fileName_ << "\": cannot make cyclic"
+                << " patches of its 'identify periodic' surfaces: " << why,
+            function
+        );
+    };
+
+    std::map<label, label> image;
+    for (const auto& pair : pairs)
+    {
+        image[pair[0]] = pair[1];
+    }
+    std::map<triFace, label> faceOf;
+    for (std::size_t b = 0; b < coarse.boundary.size(); ++b)
+    {
+        triFace f = coarse.boundary[b].v;
+        std::sort(f.begin(), f.end());
+        faceOf[f] = label(b);
+    }
+
+    // Every boundary face whose points all have images has its image on
+    // the boundary: the pair of patches they are on is periodic
+    std::map<std::pair<label, label>, label> patchPairs;
+    std::vector<label> pairedFaces(coarse.patches.size(), 0);
+    for (const coarseBoundaryFace& b : coarse.boundary)
+    {
+        triFace f;
+        bool mapped = true;
+        for (int k = 0; k < 3; ++k)
+        {
+            const auto it = image.find(b.v[k]);
+            mapped = mapped && it != image.end();
+            f[k] = mapped ? it->second : -1;
+        }
+        if (!mapped)
+        {
+            continue;
+        }
+        std::sort(f.begin(), f.end());
+        const auto it = faceOf.find(f);
+        if (it == faceOf.end())
+        {
+            throw cannot
+            (
+                "a face of patch " + coarse.patches[b.patch].name
+              + " has no image on the boundary"
+            );
+        }
+        const label other = coarse.boundary[it->second].patch;
+        if (other == b.patch)
+        {
+            throw cannot
+            (
+                "both surfaces are in patch " + coarse.patches[b.patch].name
+              + ". Give each its own -bcname"
+            );
+        }
+        ++patchPairs[{b.patch, other}];
+        ++pairedFaces[b.patch];
+    }
+
+    for (const auto& [pp, nFaces] : patchPairs)
+    {
+        label nPatchFaces = 0;
+        for (const coarseBoundaryFace& b : coarse.boundary)
+        {
+            nPatchFaces += b.patch == pp.first;
+        }
+        if (nFaces != nPatchFaces || pairedFaces[pp.first] != nFaces)
+        {
+            throw cannot
+            (
+                "patch " + coarse.patches[pp.first].name + " has "
+              + std::to_string(nPatchFaces) + " faces, of which "
+              + std::to_string(nFaces) + " are images of patch "
+              + coarse.patches[pp.second].name + "'s. Give each periodic"
+                " surface its own -bcname, and nothing else that name"
+            );
+        }
+        coarse.periodicPatches.push_back({pp.first, pp.second, {0, 0, 0}});
+    }
+
+    // A translation, the same for every point (rotations are not supported)
+    double size = 0;
+    for (const point& p : coarse.points)
+    {
+        size = std::max(size, std::sqrt(magSqr(p)));
+    }
+    for (periodicPatchPair& pp : coarse.periodicPatches)
+    {
+        bool first = true;
+        for (const coarseBoundaryFace& b : coarse.boundary)
+        {
+            if (b.patch != pp.first)
+            {
+                continue;
+            }
+            for (label p : b.v)
+            {
+                const vector d = coarse.points[image.at(p)] - coarse.points[p];
+                if (first)
+                {
+                    pp.separation = d;
+                    first = false;
+                }
+                else if (std::sqrt(magSqr(d - pp.separation)) > 1e-9*std::max(size, 1.0))
+                {
+                    throw cannot
+                    (
+                        "patches " + coarse.patches[pp.first].name + " and "
+                      + coarse.patches[pp.second].name + " are not a translation"
+                        " of each other (only translations are supported)"
+                    );
+                }
+            }
+        }
+    }
+    coarse.periodicPoints = pairs;
 }
 
 

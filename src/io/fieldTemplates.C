@@ -176,12 +176,15 @@ void pmsh::writeProcessorField(const fieldTemplate& field, const Foam::fvMesh& m
     // would make OpenFOAM warn)
     dictionary dict(field.dict);
     dictionary& boundaryField = dict.subDict("boundaryField");
-    if (!boundaryField.found("processor", keyType::LITERAL))
+    for (const word type : {"processor", "processorCyclic"})
     {
-        dictionary processor;
-        processor.add("type", word("processor"));
-        processor.add(new primitiveEntry("value", dict.lookup("internalField")));
-        boundaryField.add("processor", processor);
+        if (!boundaryField.found(type, keyType::LITERAL))
+        {
+            dictionary processor;
+            processor.add("type", type);
+            processor.add(new primitiveEntry("value", dict.lookup("internalField")));
+            boundaryField.add(type, processor);
+        }
     }
 
     if (field.className == volScalarField::typeName)

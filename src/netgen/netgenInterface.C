@@ -346,6 +346,10 @@ void compactPoints(pmsh::ng::volumeMesh& m)
             }
         }
     }
+    for (auto& pair : m.periodicPoints)
+    {
+        pair = {newIndex[pair[0]], newIndex[pair[1]]};
+    }
     m.points = std::move(points);
 }
 
@@ -770,28 +774,6 @@ pmsh::ng::csgModel::csgModel(const std::string& fileName)
         );
     }
 
-    // Periodic pairs ('identify periodic') are not kept through refinement
-    // and partitioning yet, and Netgen's own pairing of the coarse faces
-    // would be lost: a mesh whose two sides do not match cannot get cyclic
-    // patches, so stop instead of ignoring them
-    for (int i = 0; i < g->GetNIdentifications(); ++i)
-    {
-        if (dynamic_cast<const netgen::PeriodicIdentification*>(g->identifications[i]))
-        {
-            throw FatalError
-            (
-                msg()
-                    << "CSG geometry file \"" << fileName << "\" pairs"
-                    << " surfaces with 'identify periodic', which pmshFoam"
-                    << " cannot honour yet (the two sides would not match,"
-                    << " so no cyclic patches could be made). Remove the"
-                    << " identify statement to mesh the two sides as"
-                    << " ordinary patches",
-                function
-            );
-        }
-    }
-
     // What CSGeometryRegister::Load does after parsing (not in the headers)
     g->FindIdenticSurfaces(1e-8*g->MaxSize());
 
@@ -955,6 +937,26 @@ pmsh::ng::volumeMesh pmsh::ng::csgModel::generateMesh
     }
 
     volumeMesh m = convertMesh(*mesh, what);
+
+    // The point pairs of every periodic identification: Netgen meshed the
+    // two surfaces alike (its IdentifyFaces / BuildSurfaceElements), each
+    // point of the first mapped to one of the second
+    netgen::Identifications& identifications = mesh->GetIdentifications();
+    for (int nr = 1; nr <= identifications.GetMaxNr(); ++nr)
+    {
+        if (identifications.GetType(nr) != netgen::Identifications::PERIODIC)
+        {
+            continue;
+        }
+        netgen::Array<netgen::INDEX_2> pairs;
+        identifications.GetPairs(nr, pairs);
+        for (std::size_t i = 0; i < pairs.Size(); ++i)
+        {
+            m.periodicPoints.push_back
+            ({label(pairs[i].I1()) - 1, label(pairs[i].I2()) - 1});
+        }
+    }
+
     compactPoints(m);
     if (!parameters.surfaceOnly)
     {

@@ -91,6 +91,18 @@ void pmsh::setPatchTypes(CoarseMesh& coarse, const meshSettings& settings)
         p.type = choice.type;
         p.typeOrigin = choice.origin;
     }
+    // The geometry's periodic pairs are cyclic, whatever pmshDict says
+    for (const periodicPatchPair& pp : coarse.periodicPatches)
+    {
+        meshPatch& first = coarse.patches[pp.first];
+        meshPatch& second = coarse.patches[pp.second];
+        first.type = second.type = "cyclic";
+        first.typeOrigin = second.typeOrigin = "identify periodic in the geometry";
+        first.neighbourPatch = second.name;
+        second.neighbourPatch = first.name;
+        first.separation = pp.separation;
+        second.separation = -1.0*pp.separation;
+    }
 }
 
 
@@ -310,9 +322,20 @@ pmsh::meshSizes pmsh::meshSizesOf(const tetPolyMesh& mesh)
     meshSizes sizes{double(mesh.nFaces()), double(mesh.points.size()), {}};
     for (const meshPatch& p : mesh.patches)
     {
-        if (!p.isProcessor())
+        if (p.isPhysical())
         {
             sizes.patches.push_back(p);
+        }
+    }
+    // A cyclic patch's faces whose image is on another rank count too
+    for (const meshPatch& p : mesh.patches)
+    {
+        if (p.isProcessorCyclic())
+        {
+            for (meshPatch& q : sizes.patches)
+            {
+                q.size += q.name == p.neighbourPatch ? p.size : 0;
+            }
         }
     }
     return sizes;

@@ -2,6 +2,7 @@
 #include "pmshError.H"
 
 #include "processorPolyPatch.H"
+#include "processorCyclicPolyPatch.H"
 #include "syncTools.H"
 #include "labelIOList.H"
 #include "faceIOList.H"
@@ -88,6 +89,32 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
                 UPstream::myProcNo(), p.neighbProcNo
             );
         }
+        else if (p.isProcessorCyclic())
+        {
+            patches[i] = new processorCyclicPolyPatch
+            (
+                p.size, p.start, i, mesh_->boundaryMesh(),
+                UPstream::myProcNo(), p.neighbProcNo, word(p.neighbourPatch),
+                coupledPolyPatch::TRANSLATIONAL
+            );
+        }
+        else if (p.isCyclic())
+        {
+            // A translation known from the geometry: no guessing by
+            // OpenFOAM (its faces are ordered as it wants, cyclicFaces.H)
+            dictionary dict;
+            dict.add("type", word("cyclic"));
+            dict.add("nFaces", label(p.size));
+            dict.add("startFace", label(p.start));
+            dict.add("neighbourPatch", word(p.neighbourPatch));
+            dict.add("transform", word("translational"));
+            dict.add
+            (
+                "separationVector",
+                Foam::vector(p.separation[0], p.separation[1], p.separation[2])
+            );
+            patches[i] = polyPatch::New(p.name, dict, i, mesh_->boundaryMesh()).ptr();
+        }
         else
         {
             patches[i] = polyPatch::New
@@ -96,7 +123,15 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
             ).ptr();
         }
     }
-    mesh_->addFvPatches(patches, false);
+    // Cyclic patches need their geometry (the transform) before anything
+    // looks across them: a valid boundary has it computed (collective,
+    // and every rank has the same patches). Otherwise nothing needs it
+    bool cyclic = false;
+    for (const meshPatch& p : mesh.patches)
+    {
+        cyclic = cyclic || p.isCyclic();
+    }
+    mesh_->addFvPatches(patches, cyclic);
     addZones(mesh);
 }
 

@@ -108,23 +108,41 @@ pmsh::procAddressing pmsh::buildProcAddressing
         }
     }
 
-    // 4. Physical patches: rank by rank within each patch
+    // 4. Physical patches: rank by rank within each patch. A cyclic
+    //    patch's faces whose image is on another rank (its processorCyclic
+    //    patches) are faces of the cyclic patch, after the rank's own
     globalLabel patchStart = nGlobalInternal;
     for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
     {
         const meshPatch& p = mesh.patches[pi];
-        if (p.isProcessor())
+        if (!p.isPhysical())
         {
             addr.boundary.push_back(-1);
             continue;
         }
         addr.boundary.push_back(globalLabel(pi));
-        const globalLabel start = patchStart + comm.exclusiveScan(p.size);
-        for (label i = 0; i < p.size; ++i)
+        std::vector<const meshPatch*> parts{&p};
+        for (const meshPatch& q : mesh.patches)
         {
-            addr.face[p.start + i] = start + i + 1;
+            if (q.isProcessorCyclic() && q.neighbourPatch == p.name)
+            {
+                parts.push_back(&q);
+            }
         }
-        patchStart += comm.sum(std::int64_t(p.size));
+        label nLocal = 0;
+        for (const meshPatch* q : parts)
+        {
+            nLocal += q->size;
+        }
+        globalLabel next = patchStart + comm.exclusiveScan(nLocal);
+        for (const meshPatch* q : parts)
+        {
+            for (label i = 0; i < q->size; ++i)
+            {
+                addr.face[q->start + i] = ++next;
+            }
+        }
+        patchStart += comm.sum(std::int64_t(nLocal));
     }
     return addr;
 }

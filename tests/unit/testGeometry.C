@@ -882,24 +882,74 @@ TEST(csgGeometry, aBodyInABoxKeepsItsBcNameAndTheRestTakesTheSolidsName)
 }
 
 
-TEST(csgGeometry, periodicPairsStopInsteadOfBeingIgnored)
+namespace
 {
-    // Netgen's periodic cube: the two sides would get different
-    // triangulations, so no cyclic patches could be made from them
-    const tempDir dir("geometry");
-    const std::string f = dir.file
+
+// Netgen's periodic cube, the sides z = 0 and z = 1 paired, named or not
+std::string periodicCube(const tempDir& dir, bool named)
+{
+    const std::string bc1 = named ? " -bcname=bottom" : "";
+    const std::string bc2 = named ? " -bcname=top" : "";
+    return dir.file
     (
         "periodic.geo",
         "algebraic3d\n"
-        "solid p1 = plane(0, 0, 0; 0, 0, -1);\n"
-        "solid p2 = plane(1, 1, 1; 0, 0, 1);\n"
+        "solid p1 = plane(0, 0, 0; 0, 0, -1)" + bc1 + ";\n"
+        "solid p2 = plane(1, 1, 1; 0, 0, 1)" + bc2 + ";\n"
         "solid cube = plane(0, 0, 0; 0, -1, 0) and plane(0, 0, 0; -1, 0, 0)\n"
         "    and plane(1, 1, 1; 0, 1, 0) and plane(1, 1, 1; 1, 0, 0)\n"
         "    and p1 and p2;\n"
         "tlo cube;\n"
         "identify periodic p1 p2;\n"
     );
-    EXPECT_FATAL(Geometry::New(f), "cannot honour yet");
+}
+
+} // End anonymous namespace
+
+
+TEST(csgGeometry, periodicSidesAreImagesOfEachOtherByOneTranslation)
+{
+    const tempDir dir("geometry");
+    const CoarseMesh m = Geometry::New(periodicCube(dir, true))->coarseMesh({0.3, 0.3});
+    checkCoarseMesh(m);
+    ASSERT_EQ(m.periodicPatches.size(), 1u);
+    const periodicPatchPair& pp = m.periodicPatches[0];
+    EXPECT_EQ(m.patches[pp.first].name, "bottom");
+    EXPECT_EQ(m.patches[pp.second].name, "top");
+    EXPECT_NEAR(pp.separation[0], 0, 1e-12);
+    EXPECT_NEAR(pp.separation[1], 0, 1e-12);
+    EXPECT_NEAR(pp.separation[2], 1, 1e-12);
+
+    // Every face of the first side has its image among the second's faces
+    std::map<label, label> image;
+    for (const auto& pair : m.periodicPoints) image[pair[0]] = pair[1];
+    std::set<triFace> second;
+    label nFirst = 0;
+    for (const coarseBoundaryFace& b : m.boundary)
+    {
+        triFace f = b.v;
+        std::sort(f.begin(), f.end());
+        if (b.patch == pp.second) second.insert(f);
+        nFirst += b.patch == pp.first;
+    }
+    ASSERT_GT(nFirst, 1);
+    EXPECT_EQ(label(second.size()), nFirst);
+    for (const coarseBoundaryFace& b : m.boundary)
+    {
+        if (b.patch != pp.first) continue;
+        triFace f{image.at(b.v[0]), image.at(b.v[1]), image.at(b.v[2])};
+        std::sort(f.begin(), f.end());
+        EXPECT_EQ(second.count(f), 1u);
+    }
+}
+
+
+TEST(csgGeometry, periodicSidesSharingAPatchAreAnErrorAskingForBcnames)
+{
+    // Both sides would be one patch: no cyclic pair can be made of it
+    const tempDir dir("geometry");
+    const auto geometry = Geometry::New(periodicCube(dir, false));
+    EXPECT_FATAL(geometry->coarseMesh({0.3, 0.3}), "Give each its own -bcname");
 }
 
 
