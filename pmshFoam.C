@@ -332,12 +332,12 @@ int main(int argc, char *argv[])
                 " volumeMesher in system/pmshDict."
             );
         });
-        pmsh::TetMesh& tets = volume.mesh;
+        const pmsh::TetMesh& tets = volume.mesh;
         const pmsh::globalLabel nFineCells = pmsh::logVolumeMeshing(comm, volume);
         stages.end();
 
         stages.begin("numbering", "Stage 5: global point numbering");
-        const pmsh::globalPointNumbering numbering
+        pmsh::globalPointNumbering numbering
         (
             comm, coarse, cellPart, surface, pmsh::label(tets.points.size())
         );
@@ -348,48 +348,59 @@ int main(int argc, char *argv[])
             periodicParts = pmsh::periodicPartsOf(coarse, cellPart);
         });
         const pmsh::label nCoarseCells = coarse.nCells();
+        const bool cyclic = !coarse.periodicPatches.empty();
         pmsh::releaseGeometry(coarse);
         std::vector<pmsh::label>().swap(cellPart);
+        stages.end();
+
+        stages.begin("balance", "Stage 6: fine cells balanced between ranks");
+        pmsh::rankTets share = pmsh::rankShareOf(volume, surface, numbering, cyclic);
+        pmsh::failTogether(comm, [&]
+        {
+            pmsh::balanceAndLog(comm, share, volume, cyclic);
+        });
         stages.end();
 
         stages.begin
         (
             "write",
-            "Stage 6: writing " + std::string(IOstream::formatNames[runTime.writeFormat()])
+            "Stage 7: writing " + std::string(IOstream::formatNames[runTime.writeFormat()])
           + " through the " + std::string(outputFileHandler) + " fileHandler"
         );
         pmsh::tetPolyMesh rankMesh;
         pmsh::meshQualityReport quality;
         pmsh::failTogether(comm, [&]
         {
-            pmsh::dropFacesBetweenZones(surface);
             rankMesh = pmsh::tetsToPolyMesh
             (
-                std::move(tets.points), tets.tets,
-                surface.triangles, surface.region,
+                std::move(share.points), share.tets,
+                share.triangles, share.region,
                 coarse.patches, comm.parallel() ? comm.rank() : -1,
-                numbering.globalIds()
+                share.globalIds
             );
-            tets = pmsh::TetMesh();
+            share.tets = {};
+            share.triangles = {};
+            share.region = {};
             pmsh::orderCyclicFaces
             (
-                rankMesh, surface.ids, coarse, periodicParts, comm.rank()
+                rankMesh, share.pointIds, coarse, periodicParts, comm.rank()
             );
+            share.pointIds = {};
             rankMesh.zoneNames = coarse.zones;
-            rankMesh.cellZone = std::move(volume.tetZone);
+            rankMesh.cellZone = std::move(share.tetZone);
             rankMesh.zonePairs = zonePairs;
         });
         const pmsh::meshSizes sizes = pmsh::meshSizesOf(rankMesh);
         pmsh::procAddressing addressing;
         if (comm.parallel())
         {
-            addressing = pmsh::buildProcAddressing(comm, rankMesh, numbering.globalIds());
+            addressing = pmsh::buildProcAddressing(comm, rankMesh, share.globalIds);
         }
         pmsh::failTogether(comm, [&]
         {
             pmsh::checkGlobalNumbersFitLabel(comm, addressing);
         });
-        surface = pmsh::FineSurface();
+        share = pmsh::rankTets();
         pmsh::failTogether(comm, [&]
         {
             if (fileHandler().type() != outputFileHandler)

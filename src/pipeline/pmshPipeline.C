@@ -259,6 +259,65 @@ pmsh::projectionRepairSummary pmsh::logProjectionRepair
 }
 
 
+pmsh::rankTets pmsh::rankShareOf
+(
+    partitionVolumeResult& volume,
+    FineSurface& surface,
+    globalPointNumbering& numbering,
+    bool keepPointIds
+)
+{
+    dropFacesBetweenZones(surface);
+    rankTets share;
+    share.points = std::move(volume.mesh.points);
+    share.tets = std::move(volume.mesh.tets);
+    volume.mesh = TetMesh();
+    share.tetZone = std::move(volume.tetZone);
+    share.triangles = std::move(surface.triangles);
+    share.region = std::move(surface.region);
+    share.globalIds = numbering.releaseGlobalIds();
+    if (keepPointIds)
+    {
+        share.pointIds = std::move(surface.ids);
+        share.pointIds.resize(share.points.size());
+    }
+    surface = FineSurface();
+    return share;
+}
+
+
+void pmsh::balanceAndLog
+(
+    const Communicator& comm,
+    rankTets& share,
+    partitionVolumeResult& volume,
+    bool cyclic
+)
+{
+    if (!comm.parallel())
+    {
+        Info() << "    serial: nothing to balance\n";
+        return;
+    }
+    if (cyclic)
+    {
+        Info() << "    not balanced: the cyclic patches' faces find their images"
+               << " through the partition\n";
+        return;
+    }
+    const fineBalanceStats stats = balanceFineCells(comm, share);
+    volume.nCells = label(share.tets.size());
+    const minAvgMax n = reduceMinAvgMax(comm, double(share.tets.size()));
+    Info()
+        << std::fixed << std::setprecision(3)
+        << "    largest rank's fine cells over the mean: " << stats.before
+        << " -> " << stats.after << " (" << stats.moved << " cells moved)\n"
+        << std::setprecision(0)
+        << "    fine cells per rank min/avg/max: " << n.min << " / " << n.avg
+        << " / " << n.max << '\n' << std::defaultfloat;
+}
+
+
 std::string pmsh::failedSurfaceFile(const std::string& caseDir, int rank)
 {
     return caseDir + "/postProcessing/pmshFoam/failedPartition" + std::to_string(rank) + ".stl";
@@ -456,7 +515,7 @@ void pmsh::reportSummary
     const double coarseTime = stages.time("coarse");
     const double fineTime =
         stages.time("partition") + stages.time("surface")
-      + stages.time("volume") + stages.time("numbering");
+      + stages.time("volume") + stages.time("numbering") + stages.time("balance");
     const double perCore =
         fineTime > 0 ? nFineCells/fineTime/comm.size() : 0;
     double memorySum = 0;

@@ -65,7 +65,7 @@ pmsh::periodicFaceParts pmsh::periodicPartsOf
 void pmsh::orderCyclicFaces
 (
     tetPolyMesh& mesh,
-    const std::vector<barycentricId>& surfaceIds,
+    const std::vector<barycentricId>& pointIds,
     const CoarseMesh& coarse,
     const periodicFaceParts& parts,
     label myRank
@@ -85,7 +85,11 @@ void pmsh::orderCyclicFaces
     }
     auto key = [&](label pointi)
     {
-        if (pointi < 0 || std::size_t(pointi) >= surfaceIds.size())
+        if
+        (
+            pointi < 0 || std::size_t(pointi) >= pointIds.size()
+         || pointIds[pointi].nNonZero() == 0
+        )
         {
             throw FatalError
             (
@@ -94,7 +98,7 @@ void pmsh::orderCyclicFaces
                 function
             );
         }
-        const barycentricId& id = surfaceIds[pointi];
+        const barycentricId& id = pointIds[pointi];
         std::array<std::uint32_t, 3> v = id.vertex;
         for (int k = 0; k < 3; ++k)
         {

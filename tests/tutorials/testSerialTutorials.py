@@ -83,12 +83,12 @@ class sphere(CaseTest):
         self.assertEqual(s["fineCellsPerRank"], [cells])
         self.assertEqual(s["volumeMesherPerRank"], ["netgen"])
         self.assertEqual(s["volumeAttemptsPerRank"], [1])
-        stages = ["coarse", "partition", "surface", "volume", "numbering", "write"]
+        stages = ["coarse", "partition", "surface", "volume", "numbering", "balance", "write"]
         self.assertEqual(list(s["stages"]), stages)
         memory = [s["stages"][k]["peakMemoryBytes"] for k in stages]
         self.assertEqual(memory, sorted(memory), "a peak so far cannot fall")
         self.assertEqual(memory[-1], max(s["peakMemoryPerRankBytes"]))
-        self.assertAlmostEqual(s["fineTime"], sum(s["stages"][k]["seconds"] for k in stages[1:5]))
+        self.assertAlmostEqual(s["fineTime"], sum(s["stages"][k]["seconds"] for k in stages[1:6]))
 
     def test_tutorialAllrunEndsWithMeshOK(self):
         c = self.case("sphere")

@@ -1,0 +1,327 @@
+#include "fineCellBalance.H"
+#include "meshPatch.H"
+#include "pmshError.H"
+#include "tetFaceMatching.H"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <unordered_map>
+
+namespace
+{
+
+using namespace pmsh;
+
+using faceKey = std::array<globalLabel, 3>;
+
+faceKey keyOf(const triFace& f, const std::vector<globalLabel>& globalIds)
+{
+    faceKey k{globalIds[f[0]], globalIds[f[1]], globalIds[f[2]]};
+    std::sort(k.begin(), k.end());
+    return k;
+}
+
+// Across a face after the move: its patch (>= 0), the interface with a
+// rank (interfaceRegion), or another tet of the same rank
+constexpr label internalFace = std::numeric_limits<label>::max();
+
+// A tet on its way to another rank, with everything it needs there
+struct movedTet
+{
+    std::array<globalLabel, 4> globalIds;
+    std::array<point, 4> points;
+    std::array<barycentricId, 4> pointIds;
+    std::array<label, 4> across;        //!< per outward face
+    label zone;
+};
+
+// Where the tet behind a processor face goes, told to the rank across
+struct faceDestination
+{
+    faceKey key;
+    int dest;
+};
+
+// Neighbouring ranks: those behind this rank's processor faces
+std::vector<int> neighbourRanks(const rankTets& mesh)
+{
+    std::vector<int> ranks;
+    for (label r : mesh.region)
+    {
+        if (isInterfaceRegion(r))
+        {
+            ranks.push_back(int(interfaceNeighbour(r)));
+        }
+    }
+    std::sort(ranks.begin(), ranks.end());
+    ranks.erase(std::unique(ranks.begin(), ranks.end()), ranks.end());
+    return ranks;
+}
+
+// How many cells this rank sends to each neighbour: first-order
+// diffusion, each rank exchanging its load and degree with its neighbours
+// every iteration, flows accumulated (Cybenko 1989)
+std::map<int, double> diffusionFlows
+(
+    const Communicator& comm,
+    const std::vector<int>& neighbours,
+    double load,
+    double mean,
+    double tolerance
+)
+{
+    std::map<int, double> flow;
+    for (int s : neighbours) flow[s] = 0;
+    const double degree = double(neighbours.size());
+    for (int iter = 0; iter < 1000; ++iter)
+    {
+        if (comm.max(std::abs(load - mean)) <= 0.25*tolerance*mean)
+        {
+            break;
+        }
+        std::vector<std::vector<double>> send(comm.size());
+        for (int s : neighbours) send[s] = {load, degree};
+        const std::vector<std::vector<double>> received = comm.exchange(send);
+        double change = 0;
+        for (int s : neighbours)
+        {
+            if (received[s].size() != 2) continue;
+            const double alpha = 1.0/(std::max(degree, received[s][1]) + 1);
+            const double f = alpha*(load - received[s][0]);
+            flow[s] += f;
+            change -= f;
+        }
+        load += change;
+    }
+    return flow;
+}
+
+} // End anonymous namespace
+
+
+pmsh::fineBalanceStats pmsh::balanceFineCells
+(
+    const Communicator& comm,
+    rankTets& mesh,
+    double tolerance
+)
+{
+    fineBalanceStats stats;
+    if (!comm.parallel())
+    {
+        return stats;
+    }
+    const int me = comm.rank();
+    const label nTets = label(mesh.tets.size());
+    const std::vector<double> loads = comm.allGather(double(nTets));
+    double total = 0;
+    for (double l : loads) total += l;
+    const double mean = total/comm.size();
+    stats.before = *std::max_element(loads.begin(), loads.end())/mean;
+    stats.after = stats.before;
+    if (stats.before <= 1 + tolerance)
+    {
+        return stats;
+    }
+
+    const std::vector<int> neighbours = neighbourRanks(mesh);
+    const std::map<int, double> flow =
+        diffusionFlows(comm, neighbours, double(nTets), mean, tolerance);
+
+    // What lies across each tet face now
+    const tetFaceMatch match = matchTetFaces(mesh.points.size(), mesh.tets, mesh.triangles);
+    if (!match.fits())
+    {
+        throw FatalError
+        (
+            msg() << "This rank's fine mesh and its surface do not fit together:"
+                << match.problems,
+            "balanceFineCells"
+        );
+    }
+    const faceId nTetFaces = faceId(4*mesh.tets.size());
+
+    // Destinations: for each neighbour that gets cells, the tets nearest
+    // their interface, layer by layer
+    std::vector<int> dest(nTets, me);
+    for (const auto& [s, f] : flow)
+    {
+        label wanted = label(std::floor(f + 0.5));
+        if (wanted <= 0) continue;
+        std::deque<label> front;
+        std::vector<bool> queued(nTets, false);
+        for (faceId id = 0; id < nTetFaces; ++id)
+        {
+            const faceId other = match.across[id];
+            if
+            (
+                other >= nTetFaces && other != noFace
+             && mesh.region[other - nTetFaces] == interfaceRegion(s)
+             && !queued[id/4]
+            )
+            {
+                queued[id/4] = true;
+                front.push_back(label(id/4));
+            }
+        }
+        while (!front.empty() && wanted > 0)
+        {
+            const label t = front.front();
+            front.pop_front();
+            if (dest[t] != me) continue;
+            dest[t] = s;
+            --wanted;
+            for (int fi = 0; fi < 4; ++fi)
+            {
+                const faceId other = match.across[4*t + fi];
+                if (other < nTetFaces && !queued[other/4])
+                {
+                    queued[other/4] = true;
+                    front.push_back(label(other/4));
+                }
+            }
+        }
+    }
+
+    // Where the tets behind this rank's processor faces go, from their ranks
+    std::vector<std::vector<faceDestination>> tell(comm.size());
+    for (faceId id = 0; id < nTetFaces; ++id)
+    {
+        const faceId other = match.across[id];
+        if (other >= nTetFaces && other != noFace && isInterfaceRegion(mesh.region[other - nTetFaces]))
+        {
+            const int s = int(interfaceNeighbour(mesh.region[other - nTetFaces]));
+            tell[s].push_back({keyOf(mesh.triangles[other - nTetFaces], mesh.globalIds), dest[id/4]});
+        }
+    }
+    std::map<faceKey, int> destAcross;
+    for (const auto& fromRank : comm.exchange(tell))
+    {
+        for (const faceDestination& fd : fromRank)
+        {
+            destAcross[fd.key] = fd.dest;
+        }
+    }
+
+    // Every tet's faces as they will be at its destination
+    auto acrossOf = [&](label t, int fi) -> label
+    {
+        const faceId other = match.across[4*t + fi];
+        int d;
+        if (other < nTetFaces)
+        {
+            d = dest[other/4];
+        }
+        else
+        {
+            const label r = mesh.region[other - nTetFaces];
+            if (!isInterfaceRegion(r))
+            {
+                return r;   // a physical patch
+            }
+            d = destAcross.at(keyOf(mesh.triangles[other - nTetFaces], mesh.globalIds));
+        }
+        return d == dest[t] ? internalFace : interfaceRegion(d);
+    };
+
+    std::vector<std::vector<movedTet>> send(comm.size());
+    std::vector<label> staying;
+    for (label t = 0; t < nTets; ++t)
+    {
+        if (dest[t] == me)
+        {
+            staying.push_back(t);
+            continue;
+        }
+        movedTet m;
+        for (int k = 0; k < 4; ++k)
+        {
+            const label p = mesh.tets[t][k];
+            m.globalIds[k] = mesh.globalIds[p];
+            m.points[k] = mesh.points[p];
+            m.pointIds[k] = mesh.pointIds.empty() ? barycentricId() : mesh.pointIds[p];
+            m.across[k] = acrossOf(t, k);
+        }
+        m.zone = mesh.tetZone.empty() ? 0 : mesh.tetZone[t];
+        send[dest[t]].push_back(m);
+    }
+    std::vector<std::array<label, 4>> stayingAcross(staying.size());
+    for (std::size_t i = 0; i < staying.size(); ++i)
+    {
+        for (int k = 0; k < 4; ++k)
+        {
+            stayingAcross[i][k] = acrossOf(staying[i], k);
+        }
+    }
+    std::vector<std::vector<movedTet>> received = comm.exchange(send);
+    send = {};
+
+    // The new mesh: the staying tets' points in their order, then the
+    // points that came with others (each once, by global number)
+    rankTets out;
+    std::unordered_map<globalLabel, label> pointOf;
+    auto addPoint = [&](globalLabel g, const point& x, const barycentricId& id)
+    {
+        const auto inserted = pointOf.emplace(g, label(out.points.size()));
+        if (inserted.second)
+        {
+            out.points.push_back(x);
+            out.globalIds.push_back(g);
+            out.pointIds.push_back(id);
+        }
+        return inserted.first->second;
+    };
+    const bool zoned = !mesh.tetZone.empty();
+    auto addTet = [&](const tetCell& t, const std::array<label, 4>& across, label zone)
+    {
+        out.tets.push_back(t);
+        if (zoned) out.tetZone.push_back(zone);
+        const auto faces = outwardTetFaces(t);
+        for (int k = 0; k < 4; ++k)
+        {
+            if (across[k] != internalFace)
+            {
+                out.triangles.push_back(faces[k]);
+                out.region.push_back(across[k]);
+            }
+        }
+    };
+    for (std::size_t i = 0; i < staying.size(); ++i)
+    {
+        const tetCell& old = mesh.tets[staying[i]];
+        tetCell t;
+        for (int k = 0; k < 4; ++k)
+        {
+            t[k] = addPoint
+            (
+                mesh.globalIds[old[k]], mesh.points[old[k]],
+                mesh.pointIds.empty() ? barycentricId() : mesh.pointIds[old[k]]
+            );
+        }
+        addTet(t, stayingAcross[i], zoned ? mesh.tetZone[staying[i]] : 0);
+    }
+    mesh = rankTets();
+    std::int64_t nReceived = 0;
+    for (auto& fromRank : received)
+    {
+        for (const movedTet& m : fromRank)
+        {
+            tetCell t;
+            for (int k = 0; k < 4; ++k)
+            {
+                t[k] = addPoint(m.globalIds[k], m.points[k], m.pointIds[k]);
+            }
+            addTet(t, m.across, m.zone);
+            ++nReceived;
+        }
+        fromRank = {};
+    }
+    mesh = std::move(out);
+
+    stats.moved = comm.sum(nReceived);
+    const std::vector<double> after = comm.allGather(double(mesh.tets.size()));
+    stats.after = *std::max_element(after.begin(), after.end())/mean;
+    return stats;
+}
