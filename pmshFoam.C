@@ -341,12 +341,6 @@ int main(int argc, char *argv[])
         (
             comm, coarse, cellPart, surface, pmsh::label(tets.points.size())
         );
-        // Where each periodic face's image is: needs the coarse mesh
-        pmsh::periodicFaceParts periodicParts;
-        pmsh::failTogether(comm, [&]
-        {
-            periodicParts = pmsh::periodicPartsOf(coarse, cellPart);
-        });
         const pmsh::label nCoarseCells = coarse.nCells();
         const bool cyclic = !coarse.periodicPatches.empty();
         pmsh::releaseGeometry(coarse);
@@ -357,7 +351,7 @@ int main(int argc, char *argv[])
         pmsh::rankTets share = pmsh::rankShareOf(volume, surface, numbering, cyclic);
         pmsh::failTogether(comm, [&]
         {
-            pmsh::balanceAndLog(comm, share, volume, cyclic);
+            pmsh::balanceAndLog(comm, share, volume);
         });
         stages.end();
 
@@ -381,15 +375,19 @@ int main(int argc, char *argv[])
             share.tets = {};
             share.triangles = {};
             share.region = {};
-            pmsh::orderCyclicFaces
-            (
-                rankMesh, share.pointIds, coarse, periodicParts, comm.rank()
-            );
-            share.pointIds = {};
             rankMesh.zoneNames = coarse.zones;
             rankMesh.cellZone = std::move(share.tetZone);
             rankMesh.zonePairs = zonePairs;
         });
+        if (cyclic)
+        {
+            // Collective: in its own failTogether
+            pmsh::failTogether(comm, [&]
+            {
+                pmsh::orderCyclicFaces(comm, rankMesh, share.pointIds, coarse);
+            });
+            share.pointIds = {};
+        }
         const pmsh::meshSizes sizes = pmsh::meshSizesOf(rankMesh);
         pmsh::procAddressing addressing;
         if (comm.parallel())

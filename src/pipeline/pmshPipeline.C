@@ -290,19 +290,12 @@ void pmsh::balanceAndLog
 (
     const Communicator& comm,
     rankTets& share,
-    partitionVolumeResult& volume,
-    bool cyclic
+    partitionVolumeResult& volume
 )
 {
     if (!comm.parallel())
     {
         Info() << "    serial: nothing to balance\n";
-        return;
-    }
-    if (cyclic)
-    {
-        Info() << "    not balanced: the cyclic patches' faces find their images"
-               << " through the partition\n";
         return;
     }
     const fineBalanceStats stats = balanceFineCells(comm, share);

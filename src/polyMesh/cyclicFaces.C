@@ -3,74 +3,53 @@
 
 #include <algorithm>
 #include <tuple>
+#include <map>
 #include <unordered_map>
 
-pmsh::periodicFaceParts pmsh::periodicPartsOf
-(
-    const CoarseMesh& coarse,
-    const std::vector<label>& cellPart
-)
+namespace
 {
-    periodicFaceParts parts;
-    if (coarse.periodicPatches.empty())
-    {
-        return parts;
-    }
-    auto partOf = [&](label cell) { return cellPart.empty() ? 0 : cellPart[cell]; };
 
-    // The cell behind every boundary face
-    std::vector<label> cellOf(coarse.boundary.size(), -1);
-    const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
-    for (label c = 0; c < coarse.nCells(); ++c)
+using namespace pmsh;
+
+using cyclicKey = std::array<barycentricId, 3>;
+
+// A cyclic face's key on its way to the rank that pairs it with its image
+struct cyclicQuery
+{
+    cyclicKey key;
+    int rank;           //!< whose face
+    label index;        //!< its index there
+};
+
+// The answer: the rank holding the image of face `index`
+struct cyclicAnswer
+{
+    label index;
+    int imageRank;
+};
+
+int rendezvousRank(const cyclicKey& key, int nRanks)
+{
+    std::size_t h = 0;
+    for (const barycentricId& id : key)
     {
-        for (label nbr : neighbours[c])
-        {
-            if (isBoundaryNeighbour(nbr))
-            {
-                cellOf[boundaryFaceOf(nbr)] = c;
-            }
-        }
+        h = h*1000003u ^ barycentricIdHash()(id);
     }
-    std::map<label, label> toFirst;
-    for (const auto& pair : coarse.periodicPoints)
-    {
-        toFirst[pair[1]] = pair[0];
-    }
-    for (const periodicPatchPair& pp : coarse.periodicPatches)
-    {
-        for (std::size_t b = 0; b < coarse.boundary.size(); ++b)
-        {
-            const coarseBoundaryFace& f = coarse.boundary[b];
-            const bool first = f.patch == pp.first;
-            if (!first && f.patch != pp.second)
-            {
-                continue;
-            }
-            triFace key = f.v;
-            if (!first)
-            {
-                for (label& p : key)
-                {
-                    p = toFirst.at(p);
-                }
-            }
-            std::sort(key.begin(), key.end());
-            parts[key][first ? 0 : 1] = partOf(cellOf[b]);
-        }
-    }
-    return parts;
+    return int(h % std::size_t(nRanks));
 }
+
+} // End anonymous namespace
 
 
 void pmsh::orderCyclicFaces
 (
+    const Communicator& comm,
     tetPolyMesh& mesh,
     const std::vector<barycentricId>& pointIds,
-    const CoarseMesh& coarse,
-    const periodicFaceParts& parts,
-    label myRank
+    const CoarseMesh& coarse
 )
 {
+    const label myRank = comm.rank();
     if (coarse.periodicPatches.empty())
     {
         return;
@@ -111,26 +90,16 @@ void pmsh::orderCyclicFaces
         return barycentricId(v[0], id.weight[0], v[1], id.weight[1], v[2], id.weight[2]);
     };
 
-    // Whether each patch is the first of its pair
-    std::vector<int> side(mesh.patches.size(), -1);
-    for (const periodicPatchPair& pp : coarse.periodicPatches)
-    {
-        side[pp.first] = 0;
-        side[pp.second] = 1;
-    }
-
     // A boundary face with its key (sorted point keys; empty if not cyclic)
     struct boundaryFace
     {
-        std::array<barycentricId, 3> key;
+        cyclicKey key;
         triFace face;
         label owner;
     };
-    // Faces per new patch: the old patches (cyclic ones keep the faces
-    // whose image is here), then processorCyclic (neighbour, cyclic patch)
     std::vector<std::vector<boundaryFace>> kept(mesh.patches.size());
-    std::map<std::pair<label, label>, std::vector<boundaryFace>> toRank;
-    const label nInternal = mesh.nInternalFaces();
+    // The cyclic faces, until it is known where their images are
+    std::vector<std::pair<label, boundaryFace>> cyclicFaces;
     for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
     {
         const meshPatch& patch = mesh.patches[pi];
@@ -142,53 +111,80 @@ void pmsh::orderCyclicFaces
                 kept[pi].push_back({{}, f, mesh.owner[facei]});
                 continue;
             }
-            std::array<barycentricId, 3> k{key(f[0]), key(f[1]), key(f[2])};
+            cyclicKey k{key(f[0]), key(f[1]), key(f[2])};
             // Start at the point of lowest key, keeping the orientation
             const int first = int(std::min_element(k.begin(), k.end()) - k.begin());
             const triFace rotated{f[first], f[(first + 1) % 3], f[(first + 2) % 3]};
             std::sort(k.begin(), k.end());
+            cyclicFaces.push_back({label(pi), {k, rotated, mesh.owner[facei]}});
+        }
+    }
 
-            // The coarse face: the coarse points of its points' ids
-            std::vector<label> coarsePoints;
-            for (const barycentricId& id : k)
+    // Where each face's image is: the two faces of a key meet at one rank
+    std::vector<std::vector<cyclicQuery>> queries(comm.size());
+    for (std::size_t i = 0; i < cyclicFaces.size(); ++i)
+    {
+        const cyclicKey& k = cyclicFaces[i].second.key;
+        queries[rendezvousRank(k, comm.size())].push_back({k, int(myRank), label(i)});
+    }
+    std::vector<std::vector<cyclicAnswer>> answers(comm.size());
+    {
+        std::map<cyclicKey, std::vector<cyclicQuery>> byKey;
+        for (const auto& fromRank : comm.exchange(queries))
+        {
+            for (const cyclicQuery& q : fromRank)
             {
-                for (int j = 0; j < 3; ++j)
-                {
-                    if (id.weight[j]) coarsePoints.push_back(label(id.vertex[j]) - 1);
-                }
+                byKey[q.key].push_back(q);
             }
-            std::sort(coarsePoints.begin(), coarsePoints.end());
-            coarsePoints.erase
-            (
-                std::unique(coarsePoints.begin(), coarsePoints.end()), coarsePoints.end()
-            );
-            const auto it =
-                coarsePoints.size() == 3
-              ? parts.find({coarsePoints[0], coarsePoints[1], coarsePoints[2]})
-              : parts.end();
-            if (it == parts.end())
+        }
+        for (const auto& [k, pair] : byKey)
+        {
+            if (pair.size() != 2)
             {
                 throw FatalError
                 (
-                    msg() << "A face of cyclic patch " << patch.name
-                        << " lies on no periodic coarse face",
+                    msg() << "A cyclic face has " << pair.size() - 1
+                        << " images instead of one",
                     function
                 );
             }
-            const label imageRank = it->second[side[pi] == 0 ? 1 : 0];
-            if (imageRank == myRank)
-            {
-                kept[pi].push_back({k, rotated, mesh.owner[facei]});
-            }
-            else
-            {
-                toRank[{imageRank, label(pi)}].push_back({k, rotated, mesh.owner[facei]});
-            }
+            answers[pair[0].rank].push_back({pair[0].index, pair[1].rank});
+            answers[pair[1].rank].push_back({pair[1].index, pair[0].rank});
+        }
+    }
+    std::vector<int> imageRank(cyclicFaces.size(), -1);
+    for (const auto& fromRank : comm.exchange(answers))
+    {
+        for (const cyclicAnswer& a : fromRank)
+        {
+            imageRank[a.index] = a.imageRank;
+        }
+    }
+    std::map<std::pair<label, label>, std::vector<boundaryFace>> toRank;
+    for (std::size_t i = 0; i < cyclicFaces.size(); ++i)
+    {
+        const auto& [pi, face] = cyclicFaces[i];
+        if (imageRank[i] < 0)
+        {
+            throw FatalError
+            (
+                msg() << "A face of cyclic patch " << mesh.patches[pi].name
+                    << " has no image",
+                function
+            );
+        }
+        if (imageRank[i] == myRank)
+        {
+            kept[pi].push_back(face);
+        }
+        else
+        {
+            toRank[{imageRank[i], pi}].push_back(face);
         }
     }
 
     auto byKey = [](const boundaryFace& a, const boundaryFace& b) { return a.key < b.key; };
-    label next = nInternal;
+    label next = mesh.nInternalFaces();
     auto place = [&](meshPatch& patch, std::vector<boundaryFace>& faces, bool sort)
     {
         if (sort)
