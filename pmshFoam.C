@@ -18,7 +18,8 @@ Description
     r levels of refinement of each partition's surface with projection onto
     the geometry, volume remeshing of each partition (Netgen or HXT), and
     global point numbering through integer barycentric ids (no
-    floating-point matching). Several CSG top-level solids become
+    floating-point matching); then whole fine cells move between ranks
+    until every rank has its share. Several CSG top-level solids become
     cellZones, the surfaces between them faceZones (splitMeshRegions
     -cellZones makes regions of them).
 
