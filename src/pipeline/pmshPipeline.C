@@ -379,6 +379,12 @@ pmsh::meshSizes pmsh::meshSizesOf(const tetPolyMesh& mesh)
             sizes.patches.push_back(p);
         }
     }
+    sizes.zones = mesh.zoneNames;
+    sizes.zoneCells.assign(mesh.zoneNames.size(), 0);
+    for (label z : mesh.cellZone)
+    {
+        ++sizes.zoneCells[z];
+    }
     // A cyclic patch's faces whose image is on another rank count too
     for (const meshPatch& p : mesh.patches)
     {
@@ -425,6 +431,15 @@ void pmsh::logWritten
     for (const meshPatch& p : sizes.patches)
     {
         width = std::max(width, p.name.size());
+    }
+    if (!sizes.zones.empty())
+    {
+        Info() << "    cellZones (cells):";
+        for (std::size_t z = 0; z < sizes.zones.size(); ++z)
+        {
+            Info() << ' ' << sizes.zones[z] << ' ' << comm.sum(sizes.zoneCells[z]);
+        }
+        Info() << '\n';
     }
     Info() << "    patches (faces, type and why):\n";
     for (const meshPatch& p : sizes.patches)
