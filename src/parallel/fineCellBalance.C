@@ -14,15 +14,6 @@ namespace
 
 using namespace pmsh;
 
-using faceKey = std::array<globalLabel, 3>;
-
-faceKey keyOf(const triFace& f, const std::vector<globalLabel>& globalIds)
-{
-    faceKey k{globalIds[f[0]], globalIds[f[1]], globalIds[f[2]]};
-    std::sort(k.begin(), k.end());
-    return k;
-}
-
 // Across a face after the move: its patch (>= 0), the interface with a
 // rank (interfaceRegion), or another tet of the same rank
 constexpr label internalFace = std::numeric_limits<label>::max();
@@ -40,7 +31,7 @@ struct movedTet
 // Where the tet behind a processor face goes, told to the rank across
 struct faceDestination
 {
-    faceKey key;
+    globalFaceKey key;
     int dest;
 };
 
@@ -193,10 +184,10 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
         if (other >= nTetFaces && other != noFace && isInterfaceRegion(mesh.region[other - nTetFaces]))
         {
             const int s = int(interfaceNeighbour(mesh.region[other - nTetFaces]));
-            tell[s].push_back({keyOf(mesh.triangles[other - nTetFaces], mesh.globalIds), dest[id/4]});
+            tell[s].push_back({globalKeyOf(mesh.triangles[other - nTetFaces], mesh.globalIds), dest[id/4]});
         }
     }
-    std::map<faceKey, int> destAcross;
+    std::map<globalFaceKey, int> destAcross;
     for (const auto& fromRank : comm.exchange(tell))
     {
         for (const faceDestination& fd : fromRank)
@@ -221,7 +212,7 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
             {
                 return r;   // a physical patch
             }
-            d = destAcross.at(keyOf(mesh.triangles[other - nTetFaces], mesh.globalIds));
+            d = destAcross.at(globalKeyOf(mesh.triangles[other - nTetFaces], mesh.globalIds));
         }
         return d == dest[t] ? internalFace : interfaceRegion(d);
     };

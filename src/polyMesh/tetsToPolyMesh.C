@@ -328,12 +328,8 @@ void addProcessorPatches
             const label r = boundaryRegion[other - nTetFaces];
             if (isInterfaceRegion(r))
             {
-                const triFace f = tetFace(tets[id/4], int(id % 4));
-                std::array<globalLabel, 3> key
-                {
-                    globalPointIds[f[0]], globalPointIds[f[1]], globalPointIds[f[2]]
-                };
-                std::sort(key.begin(), key.end());
+                const globalFaceKey key =
+                    globalKeyOf(tetFace(tets[id/4], int(id % 4)), globalPointIds);
                 faces.push_back({interfaceNeighbour(r), key, id});
             }
         }

@@ -22,15 +22,6 @@ using namespace pmsh;
 namespace
 {
 
-using faceKey = std::array<globalLabel, 3>;
-
-faceKey keyOf(const triFace& f, const std::vector<globalLabel>& ids)
-{
-    faceKey k{ids[f[0]], ids[f[1]], ids[f[2]]};
-    std::sort(k.begin(), k.end());
-    return k;
-}
-
 // The cube's tets dealt out by x of their centroid, rank r taking a share
 // growing with r + 1 (rank P - 1 about twice the mean at P = 4): as a rank's
 // mesh after stage 5, with global point numbers and its boundary
@@ -146,8 +137,8 @@ TEST(parallelFineBalance, unevenRanksEndWithinOnePercentEveryTetOnceAndTheFacesA
 
     // The processor faces to a rank are that rank's processor faces to
     // this one; the physical boundary is the cube's, once
-    std::vector<std::vector<faceKey>> send(comm.size());
-    std::map<int, std::set<faceKey>> toRank;
+    std::vector<std::vector<globalFaceKey>> send(comm.size());
+    std::map<int, std::set<globalFaceKey>> toRank;
     double nPhysical = 0;
     for (std::size_t i = 0; i < mine.triangles.size(); ++i)
     {
@@ -155,7 +146,7 @@ TEST(parallelFineBalance, unevenRanksEndWithinOnePercentEveryTetOnceAndTheFacesA
         {
             const int s = int(interfaceNeighbour(mine.region[i]));
             EXPECT_NE(s, comm.rank());
-            const faceKey k = keyOf(mine.triangles[i], mine.globalIds);
+            const globalFaceKey k = globalKeyOf(mine.triangles[i], mine.globalIds);
             send[s].push_back(k);
             toRank[s].insert(k);
         }
@@ -168,7 +159,7 @@ TEST(parallelFineBalance, unevenRanksEndWithinOnePercentEveryTetOnceAndTheFacesA
     const auto received = comm.exchange(send);
     for (int s = 0; s < comm.size(); ++s)
     {
-        const std::set<faceKey> theirs(received[s].begin(), received[s].end());
+        const std::set<globalFaceKey> theirs(received[s].begin(), received[s].end());
         EXPECT_EQ(theirs, toRank[s]) << "processor faces between ranks " << comm.rank()
             << " and " << s << " differ";
     }
