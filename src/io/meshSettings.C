@@ -303,7 +303,7 @@ double localSize
 
 
 //- A required point entry "(x y z)" of a region.
-pmsh::point readPoint
+pmsh::point3 readPoint
 (
     const dictionary& region,
     const char* key,
@@ -326,7 +326,7 @@ pmsh::point readPoint
         stream && is->size() == 5
      && (*is)[0].isPunctuation() && (*is)[0].pToken() == Foam::token::BEGIN_LIST
      && (*is)[4].isPunctuation() && (*is)[4].pToken() == Foam::token::END_LIST;
-    pmsh::point p{};
+    pmsh::point3 p{};
     for (int k = 0; ok && k < 3; ++k)
     {
         ok = (*is)[k + 1].isNumber() && std::isfinite((*is)[k + 1].number());

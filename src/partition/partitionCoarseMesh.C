@@ -24,7 +24,7 @@ namespace
 
 using namespace pmsh;
 
-bool tetHas(const tetCell& t, label p)
+bool tetHas(const tetVerts& t, label p)
 {
     return std::find(t.begin(), t.end(), p) != t.end();
 }
@@ -32,9 +32,9 @@ bool tetHas(const tetCell& t, label p)
 
 // Does face f (outwardTetFaces order) of tet t contain all points of the
 // entity (one vertex, or the two ends of an edge)?
-bool faceContains(const tetCell& t, int f, const std::vector<label>& entity)
+bool faceContains(const tetVerts& t, int f, const std::vector<label>& entity)
 {
-    const triFace face = outwardTetFaces(t)[f];
+    const triVerts face = outwardTetFaces(t)[f];
     for (label p : entity)
     {
         if (std::find(face.begin(), face.end(), p) == face.end())
@@ -149,7 +149,7 @@ std::vector<label> components
     bool onBoundary = false;
     for (label i = 0; i < label(cells.size()); ++i)
     {
-        const tetCell& t = coarse.tets[cells[i]];
+        const tetVerts& t = coarse.tets[cells[i]];
         for (int f = 0; f < 4; ++f)
         {
             if (!faceContains(t, f, entity))
@@ -507,7 +507,7 @@ bool moveIfManifold
 {
     const label from = cellPart[c];
     cellPart[c] = to;
-    const tetCell& t = coarse.tets[c];
+    const tetVerts& t = coarse.tets[c];
     bool ok = true;
     for (int i = 0; i < 4 && ok; ++i)
     {
@@ -957,8 +957,8 @@ std::vector<label> decomposeCells
         }
         nbrs.setSize(n);
 
-        const tetCell& t = coarse.tets[c];
-        const point centroid = 0.25*
+        const tetVerts& t = coarse.tets[c];
+        const point3 centroid = 0.25*
         (
             (coarse.points[t[0]] + coarse.points[t[1]])
           + (coarse.points[t[2]] + coarse.points[t[3]])

@@ -665,7 +665,7 @@ TEST_F(partition, fineCellWeightsFollowVolumeOverLocalSizeAndTheGeometry)
     // cells on the geometry weigh more than inner cells of the same shape
     const CoarseMesh m = test::cubeMesh(4);
     CoarseMesh big = m;
-    for (point& p : big.points) p = 2.0*p;
+    for (point3& p : big.points) p = 2.0*p;
     const std::vector<double> w = fineCellWeights(m, 1.0, 2);
     const std::vector<double> wBig = fineCellWeights(big, 1.0, 2);
     const std::vector<faceNeighbours> nbrs = coarseFaceNeighbours(m);
@@ -714,7 +714,7 @@ TEST_F(partition, fineCellWeightsInsideARefinementRegionFollowOneOverSizeCubed)
     label nInside = 0;
     for (std::size_t c = 0; c < w.size(); ++c)
     {
-        const tetCell& t = m.tets[c];
+        const tetVerts& t = m.tets[c];
         const double z =
             0.25*(m.points[t[0]][2] + m.points[t[1]][2] + m.points[t[2]][2] + m.points[t[3]][2]);
         const bool onGeometry = std::any_of(nbrs[c].begin(), nbrs[c].end(), isBoundaryNeighbour);
@@ -741,7 +741,7 @@ TEST_F(partition, balancedPartsCarryEqualWeightAndStayManifolds)
     std::vector<double> w(m.tets.size(), 1.0);
     for (std::size_t c = 0; c < w.size(); ++c)
     {
-        const tetCell& t = m.tets[c];
+        const tetVerts& t = m.tets[c];
         const double x = 0.25*(m.points[t[0]][0] + m.points[t[1]][0] + m.points[t[2]][0] + m.points[t[3]][0]);
         if (x < 0.5) w[c] = 3;
     }
