@@ -44,6 +44,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "memoryEstimate.H"
+#include "foamShims.H"
 
 #include "Info.H"
 #include "labelLimit.H"
@@ -387,8 +388,7 @@ int pmsh::ranksOnThisMachine(const Communicator& comm)
     // Ranks whose host name is this rank's
     Foam::List<Foam::string> hosts(Foam::UPstream::nProcs());
     hosts[Foam::UPstream::myProcNo()] = Foam::hostName();
-    Foam::Pstream::gatherList(hosts);
-    Foam::Pstream::scatterList(hosts);
+    foam::allGatherList(hosts);
     int n = 0;
     for (const Foam::string& host : hosts)
     {

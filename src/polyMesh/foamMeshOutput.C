@@ -1,4 +1,5 @@
 #include "foamMeshOutput.H"
+#include "foamShims.H"
 #include "pmshError.H"
 
 #include "processorPolyPatch.H"
@@ -91,11 +92,10 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
         }
         else if (p.isProcessorCyclic())
         {
-            patches[i] = new processorCyclicPolyPatch
+            patches[i] = foam::newProcessorCyclicPatch
             (
                 p.size, p.start, i, mesh_->boundaryMesh(),
-                UPstream::myProcNo(), p.neighbProcNo, word(p.neighbourPatch),
-                coupledPolyPatch::TRANSLATIONAL
+                UPstream::myProcNo(), p.neighbProcNo, word(p.neighbourPatch)
             );
         }
         else if (p.isCyclic())
@@ -162,9 +162,9 @@ void pmsh::foamRankMesh::addZones(const tetPolyMesh& mesh)
     List<cellZone*> cellZones(nZones);
     forAll(cellZones, z)
     {
-        cellZones[z] = new cellZone
+        cellZones[z] = foam::newCellZone
         (
-            mesh.zoneNames[z], cells[z].shrink(), z, mesh_->cellZones()
+            mesh.zoneNames[z], cells[z].shrink(), z, *mesh_
         );
     }
 
@@ -226,10 +226,10 @@ void pmsh::foamRankMesh::addZones(const tetPolyMesh& mesh)
     List<faceZone*> faceZones(pairIndex.size());
     for (const auto& [pair, z] : pairIndex)
     {
-        faceZones[z] = new faceZone
+        faceZones[z] = foam::newFaceZone
         (
             zonePairName(mesh.zoneNames[pair.first], mesh.zoneNames[pair.second]),
-            faces[z].shrink(), boolList(flips[z]), z, mesh_->faceZones()
+            faces[z].shrink(), boolList(flips[z]), z, *mesh_
         );
     }
     mesh_->addZones(List<pointZone*>(), faceZones, cellZones);

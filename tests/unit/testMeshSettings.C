@@ -12,6 +12,7 @@
 #include "error.H"
 #include "IFstream.H"
 #include "IStringStream.H"
+#include "foamShims.H"
 
 #include <gtest/gtest.h>
 
@@ -77,13 +78,9 @@ protected:
     //  application's IOdictionary would be.
     meshSettings read(const std::string& entries) const
     {
-        Foam::IStringStream is
-        (
-            entries, Foam::IOstream::ASCII, Foam::IOstream::currentVersion,
-            dictName
-        );
-        is.lineNumber(1);   // as in a file (IFstream): the first line is 1
-        return readMeshSettings(Foam::dictionary(is), dir);
+        Foam::autoPtr<Foam::IStringStream> is = foam::namedStringStream(dictName, entries);
+        is->lineNumber(1);  // as in a file (IFstream): the first line is 1
+        return readMeshSettings(Foam::dictionary(is()), dir);
     }
 
     //- The error of reading a dictionary with these entries.
