@@ -161,11 +161,11 @@ std::string choice
     const entry* e = foam::findEntry(d, key);
     if (!e) return deflt;
     const Foam::token* t = single(*e);
-    if (!t || !foam::isStringType(*t) || !contains(choices, t->stringToken()))
+    if (!t || !foam::isStringType(*t) || !contains(choices, foam::stringToken(*t)))
     {
         invalid(d, *e, "Valid values are: " + joined(choices));
     }
-    return t->stringToken();
+    return foam::stringToken(*t);
 }
 
 
@@ -219,7 +219,7 @@ std::string readGeometry(const dictionary& d, const std::string& caseDir)
           + std::string(validFiles)
         );
     }
-    const std::string name = t->stringToken();
+    const std::string name = foam::stringToken(*t);
     const std::string path = casePath(caseDir, name);
 
     std::string ext = fs::path(path).extension().string();
@@ -403,14 +403,14 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
                 << validTypes.c_str() << Foam::exit(Foam::FatalIOError);
         }
         const Foam::token* tok = single(*t);
-        if (!tok || !foam::isStringType(*tok) || !contains(shapes, tok->stringToken()))
+        if (!tok || !foam::isStringType(*tok) || !contains(shapes, foam::stringToken(*tok)))
         {
             invalid(rd, *t, validTypes);
         }
 
         sizeRegion region;
         region.name = r.keyword();
-        const std::string type = tok->stringToken();
+        const std::string type = foam::stringToken(*tok);
         std::vector<std::string> entries{"type", "maxCellSize"};
         if (type == "box")
         {
@@ -551,7 +551,7 @@ void checkPatches(const dictionary& d, const entry& patchesEntry)
                 << Foam::exit(Foam::FatalIOError);
         }
         const Foam::token* tok = single(*t);
-        if (!tok || !foam::isStringType(*tok) || !contains(types, tok->stringToken()))
+        if (!tok || !foam::isStringType(*tok) || !contains(types, foam::stringToken(*tok)))
         {
             invalid(d, *t, validTypes);
         }
