@@ -1303,7 +1303,7 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
     {
         // 1-based; Ng_NewMesh's face descriptor has DomainIn 1, DomainOut 0:
         // triangles must point outward (right-hand rule)
-        int pi[3] = {t[0] + 1, t[1] + 1, t[2] + 1};
+        int pi[3] = {int(t[0] + 1), int(t[1] + 1), int(t[2] + 1)};
         nglib::Ng_AddSurfaceElement(mesh, nglib::NG_TRIG, pi);
     }
 
