@@ -53,7 +53,6 @@ Usage
 #include "argList.H"
 #include "Time.H"
 #include "IOdictionary.H"
-#include "sigFpe.H"
 #include "fileOperation.H"
 #include "IFstream.H"
 
@@ -63,6 +62,7 @@ Usage
 #include "Communicator.H"
 #include "failTogether.H"
 #include "fieldTemplates.H"
+#include "foamShims.H"
 #include "fineCellWeights.H"
 #include "foamMeshOutput.H"
 #include "Geometry.H"
@@ -101,6 +101,7 @@ using namespace Foam;
         MPI_Finalize();
         std::exit(exitCode);
     }
+    pmsh::foam::endNullMPI();
     UPstream::exit(0);
     std::exit(0);
 }
@@ -114,11 +115,15 @@ int main(int argc, char *argv[])
         "Generate a tetrahedral mesh in parallel (PMSH method) from a Netgen"
         " CSG (.geo) or STL geometry, straight into processor*/"
     );
-    argList::noFunctionObjects();
+    pmsh::foam::noFunctionObjects();
     // processor*/ are what pmshFoam writes: they need not exist yet
-    argList::noCheckProcessorDirectories();
+    pmsh::foam::noCheckProcessorDirectories();
     #include "addDictOption.H"
-    #include "addOverwriteOption.H"
+    argList::addBoolOption
+    (
+        "overwrite",
+        "Replace an existing mesh (only once meshing succeeded on every rank)"
+    );
     argList::addBoolOption
     (
         "noMemoryCheck",
@@ -143,16 +148,21 @@ int main(int argc, char *argv[])
     // childProcess.H): Open MPI need not warn about the fork
     ::setenv("OMPI_MCA_mpi_warn_on_fork", "0", 0);
 
-    #include "setRootCase.H"
+    // setRootCase.H, less the processor directories (pmshFoam makes them)
+    argList args(argc, argv);
+    if (!pmsh::foam::checkRootCase(args))
+    {
+        FatalError.exit();
+    }
 
     // Netgen and HXT divide by zero and take square roots of negatives on
     // purpose (and test the result): OpenFOAM's trapFpe would kill them
-    sigFpe::unset();
+    pmsh::foam::unsetFpeTrapping();
 
     // Netgen's Mesh asks MPI for its rank, also in a serial run
     if (!Pstream::parRun())
     {
-        UPstream::initNull();
+        pmsh::foam::initNullMPI();
     }
 
     // v1912's collated fileHandler deadlocks (every rank waiting in its
@@ -165,7 +175,7 @@ int main(int argc, char *argv[])
     word outputFileHandler = fileHandler().type();
     {
         autoPtr<fileOperation> reader(fileOperation::New("uncollated", false));
-        fileHandler(reader);
+        pmsh::foam::setFileHandler(reader);
     }
     const fileName controlDictFile =
         args.rootPath()/args.globalCaseName()/"system"/Time::controlDictName;
@@ -188,7 +198,7 @@ int main(int argc, char *argv[])
     IFstream controlDictStream(controlDictFile);
     dictionary controlDict(controlDictStream);
     controlDict.name() = controlDictFile;
-    if (dictionary* switches = controlDict.findDict("OptimisationSwitches"))
+    if (dictionary* switches = pmsh::foam::findDict(controlDict, "OptimisationSwitches"))
     {
         if (switches->readIfPresent("fileHandler", outputFileHandler))
         {
@@ -215,19 +225,15 @@ int main(int argc, char *argv[])
         std::unique_ptr<pmsh::Geometry> geometry;
         pmsh::failTogether(comm, [&]
         {
-            const word dictName("pmshDict");
-            #include "setSystemRunTimeDictionaryIO.H"
+            const IOobject dictIO = pmsh::foam::systemDictIO("pmshDict", args, runTime);
             // Every rank stops on a missing file: reading it would leave
             // the others waiting for the master's copy
-            const fileName dictFile = dictIO.objectPath().replace
-            (
-                runTime.path(), runTime.globalPath()
-            );
+            const fileName dictFile = pmsh::foam::globalObjectPath(dictIO, runTime);
             if (!isFile(dictFile))
             {
                 FatalErrorIn("pmshFoam")
                     << "The mesh dictionary " << dictFile << " does not exist." << nl
-                    << "Create system/" << dictName << " (see the tutorials), or name"
+                    << "Create system/pmshDict (see the tutorials), or name"
                     << " another file with -dict <file>"
                     << exit(FatalError);
             }
@@ -242,7 +248,7 @@ int main(int argc, char *argv[])
         std::optional<pmsh::caseOutput> output;
         pmsh::failTogether(comm, [&]
         {
-            output.emplace(comm, runTime, args.found("overwrite"));
+            output.emplace(comm, runTime, pmsh::foam::found(args, "overwrite"));
         });
 
         pmsh::stageLog stages(comm);
@@ -286,7 +292,7 @@ int main(int argc, char *argv[])
             (
                 comm, settings, coarse.nCells(),
                 weightSum*std::pow(8.0, settings.refinementLevels),
-                !args.found("noMemoryCheck")
+                !pmsh::foam::found(args, "noMemoryCheck")
             );
             // The patches are known now: every field must cover them all
             pmsh::checkPatchCoverage(fieldTemplates, coarse.patches);
@@ -334,7 +340,7 @@ int main(int argc, char *argv[])
             );
         });
         const pmsh::TetMesh& tets = volume.mesh;
-        const pmsh::globalLabel nFineCells = pmsh::logVolumeMeshing(comm, volume);
+        const std::int64_t nFineCells = pmsh::logVolumeMeshing(comm, volume);
         stages.end();
 
         stages.begin("numbering", "Stage 5: global point numbering");
@@ -359,7 +365,8 @@ int main(int argc, char *argv[])
         stages.begin
         (
             "write",
-            "Stage 7: writing " + std::string(IOstream::formatNames[runTime.writeFormat()])
+            "Stage 7: writing "
+          + std::string(runTime.writeFormat() == IOstream::BINARY ? "binary" : "ascii")
           + " through the " + std::string(outputFileHandler) + " fileHandler"
         );
         pmsh::tetPolyMesh rankMesh;
@@ -395,17 +402,13 @@ int main(int argc, char *argv[])
         {
             addressing = pmsh::buildProcAddressing(comm, rankMesh, share.globalIds);
         }
-        pmsh::failTogether(comm, [&]
-        {
-            pmsh::checkGlobalNumbersFitLabel(comm, addressing);
-        });
         share = pmsh::rankTets();
         pmsh::failTogether(comm, [&]
         {
             if (fileHandler().type() != outputFileHandler)
             {
                 autoPtr<fileOperation> writer(fileOperation::New(outputFileHandler, false));
-                fileHandler(writer);
+                pmsh::foam::setFileHandler(writer);
             }
             if (comm.parallel())
             {

@@ -71,7 +71,7 @@ CoarseMesh meshOnMaster(const Geometry& geometry, const coarseMeshParameters& pa
     // Each zone is filled on its own: its boundary faces and its side of
     // the faces between zones
     CoarseMesh coarse = geometry.coarseSurface(parameters);
-    std::vector<triFace> triangles;
+    std::vector<triVerts> triangles;
     std::vector<label> triangleZone;
     for (const coarseBoundaryFace& b : coarse.boundary)
     {
@@ -137,8 +137,8 @@ pmsh::CoarseMesh pmsh::generateCoarseMesh
 void pmsh::releaseGeometry(CoarseMesh& coarse)
 {
     // Swapped out, not cleared: clear() keeps the capacity
-    std::vector<point>().swap(coarse.points);
-    std::vector<tetCell>().swap(coarse.tets);
+    std::vector<point3>().swap(coarse.points);
+    std::vector<tetVerts>().swap(coarse.tets);
     std::vector<coarseBoundaryFace>().swap(coarse.boundary);
     std::vector<label>().swap(coarse.cellZone);
     std::vector<coarseZoneFace>().swap(coarse.zoneFaces);
@@ -201,7 +201,7 @@ pmsh::zoneFaceIndex::zoneFaceIndex(const CoarseMesh& coarse)
     keys_.reserve(coarse.zoneFaces.size());
     for (std::size_t i = 0; i < coarse.zoneFaces.size(); ++i)
     {
-        triFace f = coarse.zoneFaces[i].v;
+        triVerts f = coarse.zoneFaces[i].v;
         std::sort(f.begin(), f.end());
         keys_.emplace_back(f, label(i));
     }
@@ -209,13 +209,13 @@ pmsh::zoneFaceIndex::zoneFaceIndex(const CoarseMesh& coarse)
 }
 
 
-pmsh::label pmsh::zoneFaceIndex::find(const triFace& face) const
+pmsh::label pmsh::zoneFaceIndex::find(const triVerts& face) const
 {
     if (keys_.empty())
     {
         return -1;
     }
-    triFace f = face;
+    triVerts f = face;
     std::sort(f.begin(), f.end());
     const auto it = std::lower_bound
     (
@@ -227,7 +227,7 @@ pmsh::label pmsh::zoneFaceIndex::find(const triFace& face) const
 
 std::vector<pmsh::faceNeighbours> pmsh::coarseFaceNeighbours(const CoarseMesh& coarse)
 {
-    std::vector<triFace> boundary(coarse.boundary.size());
+    std::vector<triVerts> boundary(coarse.boundary.size());
     for (std::size_t b = 0; b < boundary.size(); ++b)
     {
         boundary[b] = coarse.boundary[b].v;
@@ -259,7 +259,7 @@ pmsh::coarsePointCells::coarsePointCells(const CoarseMesh& coarse)
 :
     offsets_(coarse.nPoints() + 1, 0)
 {
-    for (const tetCell& t : coarse.tets)
+    for (const tetVerts& t : coarse.tets)
     {
         for (label p : t)
         {

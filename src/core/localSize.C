@@ -22,7 +22,7 @@ const char* pmsh::sizeRegion::shapeName() const
 }
 
 
-bool pmsh::sizeRegion::contains(const point& p) const
+bool pmsh::sizeRegion::contains(const point3& p) const
 {
     switch (type)
     {
@@ -31,7 +31,7 @@ bool pmsh::sizeRegion::contains(const point& p) const
 
         case shape::cylinder:
         {
-            const vector axis = point2 - point1;
+            const vector3 axis = point2 - point1;
             const double t = dot(p - point1, axis)/magSqr(axis);
             if (t < 0 || t > 1)
             {
@@ -53,7 +53,7 @@ bool pmsh::sizeRegion::contains(const point& p) const
 }
 
 
-void pmsh::sizeRegion::bounds(point& lo, point& hi) const
+void pmsh::sizeRegion::bounds(point3& lo, point3& hi) const
 {
     switch (type)
     {
@@ -111,18 +111,18 @@ pmsh::sizeRegion pmsh::sizeRegion::scaled(double factor) const
 std::size_t pmsh::forEachSample
 (
     const sizeRegion& region,
-    const point& lo,
-    const point& hi,
-    const std::function<void(const point&)>& visit
+    const point3& lo,
+    const point3& hi,
+    const std::function<void(const point3&)>& visit
 )
 {
-    point rlo, rhi;
+    point3 rlo, rhi;
     region.bounds(rlo, rhi);
 
     // Grid lines of the whole shape, centred in its bounds (so that thin
     // shapes get a sample on their mid-plane), clipped to [lo, hi]
     std::array<long, 3> first{}, last{};
-    point start{};
+    point3 start{};
     const double h = region.size;
     for (int k = 0; k < 3; ++k)
     {
@@ -143,7 +143,7 @@ std::size_t pmsh::forEachSample
         {
             for (long k = first[2]; k <= last[2]; ++k)
             {
-                const point p
+                const point3 p
                 {
                     start[0] + i*h, start[1] + j*h, start[2] + k*h
                 };
@@ -161,11 +161,11 @@ std::size_t pmsh::forEachSample
 
 void pmsh::sampleTriangle
 (
-    const point& a,
-    const point& b,
-    const point& c,
+    const point3& a,
+    const point3& b,
+    const point3& c,
     double size,
-    const std::function<void(const point&)>& visit
+    const std::function<void(const point3&)>& visit
 )
 {
     const double longest = std::sqrt

@@ -8,7 +8,7 @@ pmsh::FatalError::FatalError(const std::string& message, const std::string& wher
 {}
 
 
-std::string pmsh::str(const point& p, int precision)
+std::string pmsh::str(const point3& p, int precision)
 {
     std::ostringstream os;
     os.precision(precision);

@@ -8,17 +8,17 @@
 
 pmsh::surfaceEdgeDefects pmsh::findSurfaceEdgeDefects
 (
-    const std::vector<triFace>& triangles
+    const std::vector<triVerts>& triangles
 )
 {
     // Edge k of triangle t, directed as the triangle goes round, is 3*t + k
     auto edgeOf = [&](matchId id)
     {
-        const triFace& f = triangles[id/3];
+        const triVerts& f = triangles[id/3];
         return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
     };
     label nPoints = 0;
-    for (const triFace& f : triangles)
+    for (const triVerts& f : triangles)
     {
         nPoints = std::max({nPoints, f[0] + 1, f[1] + 1, f[2] + 1});
     }
@@ -52,7 +52,7 @@ pmsh::surfaceEdgeDefects pmsh::findSurfaceEdgeDefects
 pmsh::surfacePointDefects pmsh::findSurfacePointDefects
 (
     label nPoints,
-    const std::vector<triFace>& triangles
+    const std::vector<triVerts>& triangles
 )
 {
     surfacePointDefects defects;
@@ -82,7 +82,7 @@ pmsh::surfacePointDefects pmsh::findSurfacePointDefects
 std::vector<pmsh::label> pmsh::surfaceShells
 (
     const label nPoints,
-    const std::vector<triFace>& triangles,
+    const std::vector<triVerts>& triangles,
     label& nShells
 )
 {
@@ -101,7 +101,7 @@ std::vector<pmsh::label> pmsh::surfaceShells
         }
         return i;
     };
-    for (const triFace& f : triangles)
+    for (const triVerts& f : triangles)
     {
         for (int k = 1; k < 3; ++k)
         {
@@ -131,10 +131,10 @@ std::vector<pmsh::label> pmsh::surfaceShells
 
 double pmsh::windingNumber
 (
-    const std::vector<point>& points,
-    const std::vector<triFace>& triangles,
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles,
     const std::vector<label>& shellTriangles,
-    const point& x
+    const point3& x
 )
 {
     // Sum of the solid angles of the triangles seen from x (Van Oosterom
@@ -142,10 +142,10 @@ double pmsh::windingNumber
     double omega = 0;
     for (label t : shellTriangles)
     {
-        const triFace& f = triangles[t];
-        const vector a = points[f[0]] - x;
-        const vector b = points[f[1]] - x;
-        const vector c = points[f[2]] - x;
+        const triVerts& f = triangles[t];
+        const vector3 a = points[f[0]] - x;
+        const vector3 b = points[f[1]] - x;
+        const vector3 c = points[f[2]] - x;
         const double la = std::sqrt(magSqr(a));
         const double lb = std::sqrt(magSqr(b));
         const double lc = std::sqrt(magSqr(c));

@@ -8,7 +8,7 @@ namespace
 
 using namespace pmsh;
 
-std::string facePoints(const triFace& f)
+std::string facePoints(const triVerts& f)
 {
     std::ostringstream os;
     os  << '(' << f[0] << ' ' << f[1] << ' ' << f[2] << ')';
@@ -31,8 +31,8 @@ void report(std::ostream& os, const problemCount& p, const char* what)
 pmsh::tetFaceMatch pmsh::matchTetFaces
 (
     std::size_t nPoints,
-    const std::vector<tetCell>& tets,
-    const std::vector<triFace>& boundaryTriangles
+    const std::vector<tetVerts>& tets,
+    const std::vector<triVerts>& boundaryTriangles
 )
 {
     const std::size_t nTets = tets.size();
@@ -48,7 +48,7 @@ pmsh::tetFaceMatch pmsh::matchTetFaces
     }
     const faceId nTetFaces = faceId(4*nTets);
 
-    auto faceOf = [&](faceId id) -> triFace
+    auto faceOf = [&](faceId id) -> triVerts
     {
         return id < nTetFaces
             ? tetFace(tets[id/4], int(id % 4))

@@ -89,7 +89,7 @@ pmsh::CoarseMesh pmsh::Geometry::localSizedMesh
         (
             surface.points[f.v[0]], surface.points[f.v[1]],
             surface.points[f.v[2]], h,
-            [&](const point& x)
+            [&](const point3& x)
             {
                 sized.sizePoints.push_back({projectToSurface(x, f.surface), h});
             }

@@ -272,10 +272,10 @@ void pmsh::csgGeometry::setPeriodicPatches
     {
         image[pair[0]] = pair[1];
     }
-    std::map<triFace, label> faceOf;
+    std::map<triVerts, label> faceOf;
     for (std::size_t b = 0; b < coarse.boundary.size(); ++b)
     {
-        triFace f = coarse.boundary[b].v;
+        triVerts f = coarse.boundary[b].v;
         std::sort(f.begin(), f.end());
         faceOf[f] = label(b);
     }
@@ -286,7 +286,7 @@ void pmsh::csgGeometry::setPeriodicPatches
     std::vector<label> pairedFaces(coarse.patches.size(), 0);
     for (const coarseBoundaryFace& b : coarse.boundary)
     {
-        triFace f;
+        triVerts f;
         bool mapped = true;
         for (int k = 0; k < 3; ++k)
         {
@@ -344,7 +344,7 @@ void pmsh::csgGeometry::setPeriodicPatches
 
     // A translation, the same for every point (rotations are not supported)
     double size = 0;
-    for (const point& p : coarse.points)
+    for (const point3& p : coarse.points)
     {
         size = std::max(size, std::sqrt(magSqr(p)));
     }
@@ -359,7 +359,7 @@ void pmsh::csgGeometry::setPeriodicPatches
             }
             for (label p : b.v)
             {
-                const vector d = coarse.points[image.at(p)] - coarse.points[p];
+                const vector3 d = coarse.points[image.at(p)] - coarse.points[p];
                 if (first)
                 {
                     pp.separation = d;
@@ -381,15 +381,15 @@ void pmsh::csgGeometry::setPeriodicPatches
 }
 
 
-pmsh::point pmsh::csgGeometry::projectToSurface(const point& p, label s) const
+pmsh::point3 pmsh::csgGeometry::projectToSurface(const point3& p, label s) const
 {
     return model_->projectToSurface(p, s);
 }
 
 
-pmsh::point pmsh::csgGeometry::projectToEdge
+pmsh::point3 pmsh::csgGeometry::projectToEdge
 (
-    const point& p,
+    const point3& p,
     label s1,
     label s2
 ) const

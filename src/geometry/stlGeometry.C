@@ -24,7 +24,7 @@ namespace
 {
 
 //- Squared distance from p to the box [lo, hi] (0 inside).
-inline double boxDistSqr(const point& p, const point& lo, const point& hi)
+inline double boxDistSqr(const point3& p, const point3& lo, const point3& hi)
 {
     double d2 = 0;
     for (int k = 0; k < 3; ++k)
@@ -39,11 +39,11 @@ inline double boxDistSqr(const point& p, const point& lo, const point& hi)
 
 //- Closest point to p on triangle (a, b, c), by the Voronoi regions of its
 //  vertices, edges and interior (Ericson, Real-Time Collision Detection).
-point closestOnTriangle(const point& p, const point& a, const point& b, const point& c)
+point3 closestOnTriangle(const point3& p, const point3& a, const point3& b, const point3& c)
 {
-    const vector ab = b - a;
-    const vector ac = c - a;
-    const vector ap = p - a;
+    const vector3 ab = b - a;
+    const vector3 ac = c - a;
+    const vector3 ap = p - a;
     const double d1 = dot(ab, ap);
     const double d2 = dot(ac, ap);
     if (d1 <= 0 && d2 <= 0)
@@ -51,7 +51,7 @@ point closestOnTriangle(const point& p, const point& a, const point& b, const po
         return a;
     }
 
-    const vector bp = p - b;
+    const vector3 bp = p - b;
     const double d3 = dot(ab, bp);
     const double d4 = dot(ac, bp);
     if (d3 >= 0 && d4 <= d3)
@@ -65,7 +65,7 @@ point closestOnTriangle(const point& p, const point& a, const point& b, const po
         return a + (d1/(d1 - d3))*ab;
     }
 
-    const vector cp = p - c;
+    const vector3 cp = p - c;
     const double d5 = dot(ab, cp);
     const double d6 = dot(ac, cp);
     if (d6 >= 0 && d5 <= d6)
@@ -91,9 +91,9 @@ point closestOnTriangle(const point& p, const point& a, const point& b, const po
 
 
 //- Closest point to p on segment (a, b).
-point closestOnSegment(const point& p, const point& a, const point& b)
+point3 closestOnSegment(const point3& p, const point3& a, const point3& b)
 {
-    const vector ab = b - a;
+    const vector3 ab = b - a;
     const double l2 = magSqr(ab);
     if (!(l2 > 0))
     {
@@ -122,14 +122,14 @@ public:
     struct entry
     {
         label id;
-        point lo, hi, centre;
+        point3 lo, hi, centre;
     };
 
 private:
 
     struct node
     {
-        point lo, hi;
+        point3 lo, hi;
         label begin, end;       // item range (leaves)
         label left, right;      // children; -1 for a leaf
     };
@@ -144,8 +144,8 @@ private:
         node nd;
         nd.lo = e[b].lo;
         nd.hi = e[b].hi;
-        point clo = e[b].centre;
-        point chi = e[b].centre;
+        point3 clo = e[b].centre;
+        point3 chi = e[b].centre;
         for (label i = b; i < b + n; ++i)
         {
             for (int k = 0; k < 3; ++k)
@@ -219,7 +219,7 @@ public:
     //- Item nearest to p; eval(id, p, closest) returns the squared
     //  distance from p to item id and sets closest. -1 if the tree is empty.
     template<class Eval>
-    label nearest(const point& p, const Eval& eval, point& closest, double& d2) const
+    label nearest(const point3& p, const Eval& eval, point3& closest, double& d2) const
     {
         label best = -1;
         d2 = std::numeric_limits<double>::infinity();
@@ -244,7 +244,7 @@ public:
             {
                 for (label i = nd.begin; i < nd.end; ++i)
                 {
-                    point q;
+                    point3 q;
                     const double di = eval(ids_[i], p, q);
                     if (di < d2)
                     {
@@ -276,7 +276,7 @@ public:
 
     //- Call visit(id) for every item whose box is within sqrt(r2) of p.
     template<class Visit>
-    void near(const point& p, double r2, const Visit& visit) const
+    void near(const point3& p, double r2, const Visit& visit) const
     {
         if (nodes_.empty())
         {
@@ -338,7 +338,7 @@ struct pmsh::stlGeometry::impl
 
     boxTree::entry triangleEntry(label t) const
     {
-        const triFace& f = surface.triangles[t];
+        const triVerts& f = surface.triangles[t];
         boxTree::entry e;
         e.id = t;
         e.lo = e.hi = surface.points[f[0]];
@@ -358,9 +358,9 @@ struct pmsh::stlGeometry::impl
     }
 
     //- Squared distance from p to triangle t and the closest point.
-    double triangleDistSqr(label t, const point& p, point& q) const
+    double triangleDistSqr(label t, const point3& p, point3& q) const
     {
-        const triFace& f = surface.triangles[t];
+        const triVerts& f = surface.triangles[t];
         q = closestOnTriangle
         (
             p, surface.points[f[0]], surface.points[f[1]], surface.points[f[2]]
@@ -385,8 +385,8 @@ pmsh::stlGeometry::stlGeometry(const std::string& fileName)
     const label nt = s.nTriangles();
 
     {
-        point lo = s.points[0], hi = s.points[0];
-        for (const point& p : s.points)
+        point3 lo = s.points[0], hi = s.points[0];
+        for (const point3& p : s.points)
         {
             for (int k = 0; k < 3; ++k)
             {
@@ -398,10 +398,10 @@ pmsh::stlGeometry::stlGeometry(const std::string& fileName)
     }
 
     // Unit normals
-    std::vector<vector> normal(nt);
+    std::vector<vector3> normal(nt);
     for (label t = 0; t < nt; ++t)
     {
-        const vector n = s.areaNormal(t);
+        const vector3 n = s.areaNormal(t);
         normal[t] = (1/std::sqrt(magSqr(n)))*n;
     }
 
@@ -414,7 +414,7 @@ pmsh::stlGeometry::stlGeometry(const std::string& fileName)
     std::vector<std::array<label, 2>> featureEdgeTriangles;
     auto edgeOf = [&](matchId id)
     {
-        const triFace& f = s.triangles[id/3];
+        const triVerts& f = s.triangles[id/3];
         return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
     };
     forEachSamePointsGroup
@@ -506,8 +506,8 @@ pmsh::stlGeometry::stlGeometry(const std::string& fileName)
         {
             boxTree::entry e;
             e.id = label(i);
-            const point& a = s.points[segs[i][0]];
-            const point& b = s.points[segs[i][1]];
+            const point3& a = s.points[segs[i][0]];
+            const point3& b = s.points[segs[i][1]];
             for (int k = 0; k < 3; ++k)
             {
                 e.lo[k] = std::min(a[k], b[k]);
@@ -551,21 +551,21 @@ pmsh::stlGeometry::featureEdges() const
 }
 
 
-pmsh::label pmsh::stlGeometry::nearestTriangle(const point& p, point& nearest) const
+pmsh::label pmsh::stlGeometry::nearestTriangle(const point3& p, point3& nearest) const
 {
     const impl& d = *impl_;
     double d2;
     return d.allTriangles.nearest
     (
         p,
-        [&d](label t, const point& x, point& q) { return d.triangleDistSqr(t, x, q); },
+        [&d](label t, const point3& x, point3& q) { return d.triangleDistSqr(t, x, q); },
         nearest,
         d2
     );
 }
 
 
-pmsh::point pmsh::stlGeometry::projectToSurface(const point& p, label s) const
+pmsh::point3 pmsh::stlGeometry::projectToSurface(const point3& p, label s) const
 {
     const impl& d = *impl_;
     if (s < 0 || s >= d.nRegions)
@@ -578,12 +578,12 @@ pmsh::point pmsh::stlGeometry::projectToSurface(const point& p, label s) const
             "pmsh::stlGeometry::projectToSurface"
         );
     }
-    point q = p;
+    point3 q = p;
     double d2;
     d.regionTriangles[s].nearest
     (
         p,
-        [&d](label t, const point& x, point& c) { return d.triangleDistSqr(t, x, c); },
+        [&d](label t, const point3& x, point3& c) { return d.triangleDistSqr(t, x, c); },
         q,
         d2
     );
@@ -591,9 +591,9 @@ pmsh::point pmsh::stlGeometry::projectToSurface(const point& p, label s) const
 }
 
 
-pmsh::point pmsh::stlGeometry::projectToEdge
+pmsh::point3 pmsh::stlGeometry::projectToEdge
 (
-    const point& p,
+    const point3& p,
     label s1,
     label s2
 ) const
@@ -613,12 +613,12 @@ pmsh::point pmsh::stlGeometry::projectToEdge
     }
     const auto& segs = it->second.segments;
     const auto& pts = d.surface.points;
-    point q = p;
+    point3 q = p;
     double d2;
     it->second.tree.nearest
     (
         p,
-        [&segs, &pts](label i, const point& x, point& c)
+        [&segs, &pts](label i, const point3& x, point3& c)
         {
             c = closestOnSegment(x, pts[segs[i][0]], pts[segs[i][1]]);
             return magSqr(x - c);
@@ -699,8 +699,8 @@ std::vector<meshAttempt> meshAttempts(const ng::meshParameters& configured)
 //  while Netgen's meshing steps fail.
 ng::volumeMesh retriedStlMesh
 (
-    const std::vector<point>& points,
-    const std::vector<triFace>& triangles,
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles,
     const std::vector<std::array<label, 2>>& featureEdges,
     const ng::meshParameters& configured,
     const std::string& fileName
@@ -806,7 +806,7 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
     const double tol2 = tol*tol;
 
     // Regions within tol of a point (sorted, unique)
-    auto regionsAt = [&d, tol2](const point& p)
+    auto regionsAt = [&d, tol2](const point3& p)
     {
         std::vector<label> r;
         d.allTriangles.near
@@ -814,7 +814,7 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
             p, tol2,
             [&](label t)
             {
-                point q;
+                point3 q;
                 if (d.triangleDistSqr(t, p, q) <= tol2)
                 {
                     r.push_back(d.region[t]);
@@ -862,7 +862,7 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
             }
         }
 
-        const point c = (1.0/3.0)
+        const point3 c = (1.0/3.0)
           * (m.points[b.v[0]] + m.points[b.v[1]] + m.points[b.v[2]]);
 
         label r = -1;
@@ -878,11 +878,11 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
             for (label cr : common)
             {
                 double d2;
-                point q;
+                point3 q;
                 d.regionTriangles[cr].nearest
                 (
                     c,
-                    [&d](label t, const point& x, point& y) { return d.triangleDistSqr(t, x, y); },
+                    [&d](label t, const point3& x, point3& y) { return d.triangleDistSqr(t, x, y); },
                     q,
                     d2
                 );
@@ -898,7 +898,7 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
             // No region holds all three vertices: Netgen's face crosses a
             // feature edge (or a vertex is off the STL)
             ++nOff;
-            point q;
+            point3 q;
             r = d.region[nearestTriangle(c, q)];
             for (label v : b.v)
             {

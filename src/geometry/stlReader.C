@@ -23,7 +23,7 @@ namespace
 {
 
 // STL coordinates in messages: enough digits to find the facet in the file
-std::string stlPoint(const point& p)
+std::string stlPoint(const point3& p)
 {
     return str(p, 10);
 }
@@ -58,7 +58,7 @@ struct pointKey
 {
     std::uint64_t bits[3];
 
-    explicit pointKey(const point& p)
+    explicit pointKey(const point3& p)
     {
         for (int k = 0; k < 3; ++k)
         {
@@ -119,9 +119,9 @@ public:
         return label(s_.solidNames.size()) - 1;
     }
 
-    label addPoint(const point& p)
+    label addPoint(const point3& p)
     {
-        const point q{p[0] + 0.0, p[1] + 0.0, p[2] + 0.0};
+        const point3 q{p[0] + 0.0, p[1] + 0.0, p[2] + 0.0};
         const auto ins = pointIndex_.emplace(pointKey(q), label(s_.points.size()));
         if (ins.second)
         {
@@ -130,7 +130,7 @@ public:
         return ins.first->second;
     }
 
-    void addTriangle(const point& a, const point& b, const point& c, label solid)
+    void addTriangle(const point3& a, const point3& b, const point3& c, label solid)
     {
         s_.triangles.push_back({addPoint(a), addPoint(b), addPoint(c)});
         s_.solid.push_back(solid);
@@ -260,10 +260,10 @@ public:
         return x;
     }
 
-    point vertex()
+    point3 vertex()
     {
         expect("vertex");
-        point p;
+        point3 p;
         p[0] = number();
         p[1] = number();
         p[2] = number();
@@ -303,9 +303,9 @@ void readAscii(const std::string& buf, const std::string& fileName, surfaceBuild
             scan.number();
             scan.expect("outer");
             scan.expect("loop");
-            const point p0 = scan.vertex();
-            const point p1 = scan.vertex();
-            const point p2 = scan.vertex();
+            const point3 p0 = scan.vertex();
+            const point3 p1 = scan.vertex();
+            const point3 p2 = scan.vertex();
             const std::string e = scan.word();
             if (asciiScanner::same(e, "vertex"))
             {
@@ -337,7 +337,7 @@ void readBinary
         const char* rec = buf.data() + 84 + 50*std::size_t(i);
         float f[12];
         std::memcpy(f, rec, sizeof(f));
-        point p[3];
+        point3 p[3];
         for (int k = 0; k < 3; ++k)
         {
             for (int j = 0; j < 3; ++j)
@@ -537,9 +537,9 @@ pmsh::stlSurface pmsh::readStl(const std::string& fileName)
 double pmsh::enclosedVolume(const stlSurface& s)
 {
     // About a point near the surface, for accuracy far from the origin
-    const point o = s.points.empty() ? point{0, 0, 0} : s.points[0];
+    const point3 o = s.points.empty() ? point3{0, 0, 0} : s.points[0];
     double v6 = 0;
-    for (const triFace& f : s.triangles)
+    for (const triVerts& f : s.triangles)
     {
         v6 += tetVolume6(o, s.points[f[0]], s.points[f[1]], s.points[f[2]]);
     }
@@ -559,7 +559,7 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
         label first = -1;
         for (label t = 0; t < nt; ++t)
         {
-            const triFace& f = s.triangles[t];
+            const triVerts& f = s.triangles[t];
             double l2 = 0;
             for (int k = 0; k < 3; ++k)
             {
@@ -577,7 +577,7 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
         }
         if (nBad)
         {
-            const triFace& f = s.triangles[first];
+            const triVerts& f = s.triangles[first];
             throw FatalError
             (
                 msg()
@@ -674,8 +674,8 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
     // Where a shell is: a solid may hold several
     auto extentOf = [&](label sh)
     {
-        point lo = s.points[s.triangles[triangles[sh][0]][0]];
-        point hi = lo;
+        point3 lo = s.points[s.triangles[triangles[sh][0]][0]];
+        point3 hi = lo;
         for (label t : triangles[sh])
         {
             for (label p : s.triangles[t])
@@ -694,11 +694,11 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
     for (label sh = 0; sh < nShells; ++sh)
     {
         // Volume about a point of the shell, for accuracy far from the origin
-        const point o = s.points[s.triangles[triangles[sh][0]][0]];
+        const point3 o = s.points[s.triangles[triangles[sh][0]][0]];
         double v6 = 0;
         for (label t : triangles[sh])
         {
-            const triFace& f = s.triangles[t];
+            const triVerts& f = s.triangles[t];
             v6 += tetVolume6(o, s.points[f[0]], s.points[f[1]], s.points[f[2]]);
         }
         if (!(v6 != 0))
@@ -714,8 +714,8 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
 
         // Nesting depth: the other shells around this one (shells do not
         // cross, so any of its points tells)
-        const triFace& f = s.triangles[triangles[sh][0]];
-        const point x =
+        const triVerts& f = s.triangles[triangles[sh][0]];
+        const point3 x =
             (1.0/3.0)*(s.points[f[0]] + s.points[f[1]] + s.points[f[2]]);
         label depth = 0;
         std::string around;

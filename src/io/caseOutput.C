@@ -1,4 +1,5 @@
 #include "caseOutput.H"
+#include "foamShims.H"
 #include "pmshError.H"
 
 #include "fileOperation.H"
@@ -71,16 +72,7 @@ pmsh::caseOutput::caseOutput
       / (comm.parallel() ? Foam::word("processor" + Foam::name(comm.rank())) : Foam::word::null);
     scratchTime_.reset
     (
-        new Foam::Time
-        (
-            runTime.controlDict(),
-            runTime.rootPath(),
-            caseName,
-            "system",
-            "constant",
-            false,      // no function objects
-            false       // no libs
-        )
+        foam::newTime(runTime.controlDict(), runTime.rootPath(), caseName)
     );
 }
 

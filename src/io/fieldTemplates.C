@@ -1,4 +1,5 @@
 #include "fieldTemplates.H"
+#include "foamShims.H"
 
 #include "IFstream.H"
 #include "IOdictionary.H"
@@ -32,7 +33,7 @@ void requireUniform
     const std::string& scope = ""
 )
 {
-    const Foam::entry* e = dict.findEntry(keyword, Foam::keyType::LITERAL);
+    const Foam::entry* e = pmsh::foam::findEntry(dict, keyword);
     if (!e || !e->isStream())
     {
         return;
@@ -42,9 +43,9 @@ void requireUniform
     {
         return;
     }
-    Foam::FatalIOError
+    pmsh::foam::ioError
     (
-        FUNCTION_NAME, __FILE__, __LINE__,
+        Foam::FatalIOError, FUNCTION_NAME, __FILE__, __LINE__,
         file, e->startLineNumber(), e->endLineNumber()
     )
         << "Entry '" << keyword.c_str() << "'"
@@ -65,14 +66,15 @@ std::vector<pmsh::fieldTemplate> pmsh::readFieldTemplates(const Foam::Time& runT
     // The case's own files, read directly: a processor case's IOobject
     // would look in processorN/<time>, which does not exist yet
     std::vector<fieldTemplate> fields;
-    const fileName dir = runTime.globalPath()/runTime.timeName();
-    for (const fileName& file : readDir(dir, fileName::FILE))
+    const fileName dir = runTime.globalPath()/pmsh::foam::timeName(runTime);
+    for (const fileName& file : pmsh::foam::filesIn(dir))
     {
         IFstream is(dir/file);
         const dictionary dict(is, true);    // keep FoamFile: its class
-        const dictionary* header = dict.findDict("FoamFile");
-        const word className = header ? header->getOrDefault<word>("class", word::null) : word::null;
-        if (!fieldClasses.found(className))
+        const dictionary* header = pmsh::foam::findDict(dict, "FoamFile");
+        const word className =
+            header ? pmsh::foam::getOrDefault<word>(*header, "class", word::null) : word::null;
+        if (std::find(fieldClasses.begin(), fieldClasses.end(), className) == fieldClasses.end())
         {
             continue;
         }
@@ -111,18 +113,18 @@ void pmsh::checkPatchCoverage
             // constraint or wall type), regular expression
             if
             (
-                bf.found(patch.name, keyType::LITERAL)
-             || (patch.type != "patch" && bf.found(patch.type, keyType::LITERAL))
-             || bf.found(patch.name, keyType::REGEX)
+                pmsh::foam::found(bf, patch.name)
+             || (patch.type != "patch" && pmsh::foam::found(bf, patch.type))
+             || pmsh::foam::found(bf, patch.name, true)
             )
             {
                 continue;
             }
             // The field's file (bf.name() is "<file>.boundaryField"), no
             // line: boundaryField's first entry may come from an #include
-            FatalIOError
+            pmsh::foam::ioError
             (
-                FUNCTION_NAME, __FILE__, __LINE__, field.dict.name(), -1, -1
+                FatalIOError, FUNCTION_NAME, __FILE__, __LINE__, field.dict.name(), -1, -1
             )
                 << "Field " << field.name.c_str() << " has no boundary condition"
                 << " for patch '" << patch.name.c_str() << "' (type "
@@ -152,7 +154,7 @@ void writeField
         Foam::IOobject
         (
             field.name,
-            mesh.time().timeName(),
+            pmsh::foam::timeName(mesh.time()),
             mesh,
             Foam::IOobject::NO_READ,
             Foam::IOobject::NO_WRITE,
@@ -178,7 +180,7 @@ void pmsh::writeProcessorField(const fieldTemplate& field, const Foam::fvMesh& m
     dictionary& boundaryField = dict.subDict("boundaryField");
     for (const word type : {"processor", "processorCyclic"})
     {
-        if (!boundaryField.found(type, keyType::LITERAL))
+        if (!pmsh::foam::found(boundaryField, type))
         {
             dictionary processor;
             processor.add("type", type);

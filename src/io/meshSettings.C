@@ -1,4 +1,5 @@
 #include "meshSettings.H"
+#include "foamShims.H"
 #include "VolumeMesher.H"
 
 #include <algorithm>
@@ -18,7 +19,6 @@ namespace
 
 using Foam::dictionary;
 using Foam::entry;
-using Foam::keyType;
 
 const char* const where = "pmsh::readMeshSettings";
 
@@ -81,9 +81,9 @@ std::string suggestion(const std::string& key, const std::vector<std::string>& v
 //- FatalIOError located at an entry of d: the file and the entry's lines.
 Foam::OSstream& entryError(const dictionary& d, const entry& e)
 {
-    return Foam::FatalIOError
+    return foam::ioError
     (
-        where, __FILE__, __LINE__,
+        Foam::FatalIOError, where, __FILE__, __LINE__,
         d.topDict().name(), e.startLineNumber(), e.endLineNumber()
     );
 }
@@ -99,7 +99,7 @@ void invalid
 )
 {
     const std::string value =
-        e.isStream() ? e.stream().toString() : "a sub-dictionary";
+        e.isStream() ? foam::tokensString(e.stream()) : "a sub-dictionary";
     entryError(d, e)
         << "Entry '" << e.keyword().c_str() << "' is " << value.c_str()
         << note.c_str() << '\n' << valid.c_str()
@@ -126,7 +126,7 @@ double bounded
     const std::string& valid
 )
 {
-    const entry* e = d.findEntry(key, keyType::LITERAL);
+    const entry* e = foam::findEntry(d, key);
     if (!e) return deflt;
     const Foam::token* t = single(*e);
     if
@@ -158,14 +158,14 @@ std::string choice
     const std::vector<std::string>& choices
 )
 {
-    const entry* e = d.findEntry(key, keyType::LITERAL);
+    const entry* e = foam::findEntry(d, key);
     if (!e) return deflt;
     const Foam::token* t = single(*e);
-    if (!t || !t->isStringType() || !contains(choices, t->stringToken()))
+    if (!t || !foam::isStringType(*t) || !contains(choices, foam::stringToken(*t)))
     {
         invalid(d, *e, "Valid values are: " + joined(choices));
     }
-    return t->stringToken();
+    return foam::stringToken(*t);
 }
 
 
@@ -199,7 +199,7 @@ std::string readGeometry(const dictionary& d, const std::string& caseDir)
 {
     const char* const validFiles =
         "Valid geometry files: .geo (Netgen CSG), .stl (ascii or binary STL)";
-    const entry* e = d.findEntry("geometry", keyType::LITERAL);
+    const entry* e = foam::findEntry(d, "geometry");
     if (!e)
     {
         FatalIOErrorInFunction(d)
@@ -209,7 +209,7 @@ std::string readGeometry(const dictionary& d, const std::string& caseDir)
             << validFiles << Foam::exit(Foam::FatalIOError);
     }
     const Foam::token* t = single(*e);
-    if (!t || !t->isStringType())
+    if (!t || !foam::isStringType(*t))
     {
         invalid
         (
@@ -219,7 +219,7 @@ std::string readGeometry(const dictionary& d, const std::string& caseDir)
           + std::string(validFiles)
         );
     }
-    const std::string name = t->stringToken();
+    const std::string name = foam::stringToken(*t);
     const std::string path = casePath(caseDir, name);
 
     std::string ext = fs::path(path).extension().string();
@@ -283,7 +283,7 @@ double localSize
         "maxCellSize of " + owner + " must be a number > 0: the largest"
         " coarse cell size there, in the units of the geometry (a size"
         " larger than the global maxCellSize does not refine)";
-    const entry* e = sub.findEntry("maxCellSize", keyType::LITERAL);
+    const entry* e = foam::findEntry(sub, "maxCellSize");
     if (!e)
     {
         if (required)
@@ -303,7 +303,7 @@ double localSize
 
 
 //- A required point entry "(x y z)" of a region.
-pmsh::point readPoint
+pmsh::point3 readPoint
 (
     const dictionary& region,
     const char* key,
@@ -313,7 +313,7 @@ pmsh::point readPoint
     const std::string valid =
         "Entry '" + std::string(key) + "' of " + owner
       + " must be a point (x y z), e.g. " + key + " (0 0 0);";
-    const entry* e = region.findEntry(key, keyType::LITERAL);
+    const entry* e = foam::findEntry(region, key);
     if (!e)
     {
         FatalIOErrorInFunction(region)
@@ -326,7 +326,7 @@ pmsh::point readPoint
         stream && is->size() == 5
      && (*is)[0].isPunctuation() && (*is)[0].pToken() == Foam::token::BEGIN_LIST
      && (*is)[4].isPunctuation() && (*is)[4].pToken() == Foam::token::END_LIST;
-    pmsh::point p{};
+    pmsh::point3 p{};
     for (int k = 0; ok && k < 3; ++k)
     {
         ok = (*is)[k + 1].isNumber() && std::isfinite((*is)[k + 1].number());
@@ -350,7 +350,7 @@ double readPositive
 {
     const std::string valid =
         "Entry '" + std::string(key) + "' of " + owner + " must be a number > 0";
-    if (!region.findEntry(key, keyType::LITERAL))
+    if (!foam::findEntry(region, key))
     {
         FatalIOErrorInFunction(region)
             << "Entry '" << key << "' not found in " << owner.c_str() << '\n'
@@ -395,7 +395,7 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
                 " one of: " + joined(shapes) + ", e.g.\n" + example);
         }
         const dictionary& rd = r.dict();
-        const entry* t = rd.findEntry("type", keyType::LITERAL);
+        const entry* t = foam::findEntry(rd, "type");
         if (!t)
         {
             entryError(d, r)
@@ -403,14 +403,14 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
                 << validTypes.c_str() << Foam::exit(Foam::FatalIOError);
         }
         const Foam::token* tok = single(*t);
-        if (!tok || !tok->isStringType() || !contains(shapes, tok->stringToken()))
+        if (!tok || !foam::isStringType(*tok) || !contains(shapes, foam::stringToken(*tok)))
         {
             invalid(rd, *t, validTypes);
         }
 
         sizeRegion region;
         region.name = r.keyword();
-        const std::string type = tok->stringToken();
+        const std::string type = foam::stringToken(*tok);
         std::vector<std::string> entries{"type", "maxCellSize"};
         if (type == "box")
         {
@@ -451,7 +451,7 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
                     {
                         invalid
                         (
-                            rd, *rd.findEntry("max", keyType::LITERAL),
+                            rd, *foam::findEntry(rd, "max"),
                             "Every component of 'max' of " + owner
                           + " must be larger than that of 'min'",
                             " (not above min)"
@@ -471,7 +471,7 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
                 {
                     invalid
                     (
-                        rd, *rd.findEntry("point2", keyType::LITERAL),
+                        rd, *foam::findEntry(rd, "point2"),
                         "point1 and point2 of " + owner + " are the ends of"
                         " its axis and must differ",
                         " (the same as point1)"
@@ -542,7 +542,7 @@ void checkPatches(const dictionary& d, const entry& patchesEntry)
             }
         }
         localSize(d, p.dict(), "patch '" + p.keyword() + "'");
-        const entry* t = p.dict().findEntry("type", keyType::LITERAL);
+        const entry* t = foam::findEntry(p.dict(), "type");
         if (!t)
         {
             entryError(d, p)
@@ -551,7 +551,7 @@ void checkPatches(const dictionary& d, const entry& patchesEntry)
                 << Foam::exit(Foam::FatalIOError);
         }
         const Foam::token* tok = single(*t);
-        if (!tok || !tok->isStringType() || !contains(types, tok->stringToken()))
+        if (!tok || !foam::isStringType(*tok) || !contains(types, foam::stringToken(*tok)))
         {
             invalid(d, *t, validTypes);
         }
@@ -593,12 +593,12 @@ meshSettings::patchTypeChoice meshSettings::choosePatchType
 ) const
 {
     // REGEX search: the literal name first, then the patterns, last first
-    const entry* e = patches.findEntry(patchName, keyType::REGEX);
-    if (e && e->isDict() && e->dict().found("type"))
+    const entry* e = foam::findEntry(patches, patchName, true);
+    if (e && e->isDict() && foam::found(e->dict(), "type"))
     {
         return
         {
-            e->dict().get<Foam::word>("type"),
+            foam::get<Foam::word>(e->dict(), "type"),
             "patches entry \"" + std::string(e->keyword()) + "\""
         };
     }
@@ -635,10 +635,10 @@ meshSettings::patchTypeChoice meshSettings::choosePatchType
 double meshSettings::patchMaxCellSize(const std::string& patchName) const
 {
     // The same entry as patchType's
-    const entry* e = patches.findEntry(patchName, keyType::REGEX);
+    const entry* e = foam::findEntry(patches, patchName, true);
     return
         e && e->isDict()
-      ? e->dict().getOrDefault<Foam::scalar>("maxCellSize", 0)
+      ? foam::getOrDefault<Foam::scalar>(e->dict(), "maxCellSize", 0)
       : 0;
 }
 
@@ -647,7 +647,7 @@ bool meshSettings::hasPatchSizes() const
 {
     for (const entry& e : patches)
     {
-        if (e.isDict() && e.dict().found("maxCellSize", keyType::LITERAL))
+        if (e.isDict() && foam::found(e.dict(), "maxCellSize"))
         {
             return true;
         }
@@ -695,7 +695,7 @@ meshSettings readMeshSettings
     const std::string validSize =
         "maxCellSize must be a number > 0: the largest edge length of the"
         " coarse mesh, in the units of the geometry";
-    if (!dict.findEntry("maxCellSize", keyType::LITERAL))
+    if (!foam::findEntry(dict, "maxCellSize"))
     {
         FatalIOErrorInFunction(dict)
             << "Entry 'maxCellSize' not found\n" << validSize.c_str()
@@ -718,7 +718,7 @@ meshSettings readMeshSettings
         "Valid values are integers 0 <= refinementLevels <= 10"
         " (each level multiplies the number of cells by about 8)"
     );
-    if (const entry* e = dict.findEntry("refinementLevels", keyType::LITERAL))
+    if (const entry* e = foam::findEntry(dict, "refinementLevels"))
     {
         s.refinementLevelsLine = e->startLineNumber();
     }
@@ -751,13 +751,13 @@ meshSettings readMeshSettings
         " cells per radian of STL surface curvature (0 = off)"
     );
 
-    if (const entry* e = dict.findEntry("patches", keyType::LITERAL))
+    if (const entry* e = foam::findEntry(dict, "patches"))
     {
         checkPatches(dict, *e);
         s.patches = e->dict();
     }
 
-    if (const entry* e = dict.findEntry("refinementRegions", keyType::LITERAL))
+    if (const entry* e = foam::findEntry(dict, "refinementRegions"))
     {
         s.refinementRegions = readRegions(dict, *e);
     }

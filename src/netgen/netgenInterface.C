@@ -218,14 +218,14 @@ std::string oneLine(const std::string& s)
 }
 
 
-double boundingBoxDiagonal(const std::vector<pmsh::point>& points)
+double boundingBoxDiagonal(const std::vector<pmsh::point3>& points)
 {
     if (points.empty())
     {
         return 0;
     }
-    pmsh::point lo = points[0];
-    pmsh::point hi = points[0];
+    pmsh::point3 lo = points[0];
+    pmsh::point3 hi = points[0];
     for (const auto& p : points)
     {
         for (int k = 0; k < 3; ++k)
@@ -245,7 +245,7 @@ void makeTetsPositive(pmsh::ng::volumeMesh& m, const std::string& what)
     using namespace pmsh;
     for (std::size_t i = 0; i < m.tets.size(); ++i)
     {
-        tetCell& t = m.tets[i];
+        tetVerts& t = m.tets[i];
         const double v6 = tetVolume6
         (
             m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]
@@ -275,7 +275,7 @@ void makeTetsPositive(pmsh::ng::volumeMesh& m, const std::string& what)
 void checkBoundary(const pmsh::ng::volumeMesh& m, const std::string& what)
 {
     using namespace pmsh;
-    std::vector<triFace> boundary(m.boundary.size());
+    std::vector<triVerts> boundary(m.boundary.size());
     for (std::size_t b = 0; b < boundary.size(); ++b)
     {
         boundary[b] = m.boundary[b].v;
@@ -316,7 +316,7 @@ void compactPoints(pmsh::ng::volumeMesh& m)
         }
     }
     label n = 0;
-    std::vector<point> points;
+    std::vector<point3> points;
     for (std::size_t i = 0; i < m.points.size(); ++i)
     {
         if (newIndex[i] == 0)
@@ -598,8 +598,8 @@ void restrictLocalSizes(netgen::Mesh& mesh, const pmsh::ng::meshParameters& p)
         return;
     }
     const netgen::Box<3>& box = mesh.LocalHFunction().GetBoundingBox();
-    const point lo{box.PMin()(0), box.PMin()(1), box.PMin()(2)};
-    const point hi{box.PMax()(0), box.PMax()(1), box.PMax()(2)};
+    const point3 lo{box.PMin()(0), box.PMin()(1), box.PMin()(2)};
+    const point3 hi{box.PMax()(0), box.PMax()(1), box.PMax()(2)};
     for (const sizeRegion& r : p.regions)
     {
         if (r.size < p.maxh)
@@ -607,7 +607,7 @@ void restrictLocalSizes(netgen::Mesh& mesh, const pmsh::ng::meshParameters& p)
             forEachSample
             (
                 r, lo, hi,
-                [&](const point& x)
+                [&](const point3& x)
                 {
                     mesh.RestrictLocalH(netgen::Point3d(x[0], x[1], x[2]), r.size);
                 }
@@ -991,7 +991,7 @@ pmsh::ng::volumeMesh pmsh::ng::csgModel::generateMesh
 }
 
 
-pmsh::point pmsh::ng::csgModel::projectToSurface(const point& p, label s) const
+pmsh::point3 pmsh::ng::csgModel::projectToSurface(const point3& p, label s) const
 {
     checkSurface(s, "pmsh::ng::csgModel::projectToSurface");
 
@@ -1004,9 +1004,9 @@ pmsh::point pmsh::ng::csgModel::projectToSurface(const point& p, label s) const
 }
 
 
-pmsh::point pmsh::ng::csgModel::projectToEdge
+pmsh::point3 pmsh::ng::csgModel::projectToEdge
 (
-    const point& p,
+    const point3& p,
     label s1,
     label s2
 ) const
@@ -1040,8 +1040,8 @@ pmsh::point pmsh::ng::csgModel::projectToEdge
 
 pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
 (
-    const std::vector<point>& points,
-    const std::vector<triFace>& triangles,
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles,
     const std::vector<std::array<label, 2>>& featureEdges,
     const meshParameters& parameters,
     const std::string& what
@@ -1066,7 +1066,7 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
     // Ng_STL_AddTriangle appends to a file-global buffer that only
     // Ng_STL_InitSTLGeometry empties: nothing in between may throw.
     // Triangles are expected with positive (outward) orientation.
-    for (const triFace& t : triangles)
+    for (const triVerts& t : triangles)
     {
         double p[3][3];
         for (int k = 0; k < 3; ++k)
@@ -1076,7 +1076,7 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
                 p[k][j] = points[t[k]][j];
             }
         }
-        const vector n = cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]);
+        const vector3 n = cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]);
         double nv[3] = {n[0], n[1], n[2]};
         nglib::Ng_STL_AddTriangle(geo, p[0], p[1], p[2], nv);
     }
@@ -1271,8 +1271,8 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
 
 pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
 (
-    const std::vector<point>& points,
-    const std::vector<triFace>& triangles,
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles,
     const meshParameters& parameters,
     const std::string& what
 )
@@ -1294,16 +1294,16 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
     nglibMeshGuard guard(nglib::Ng_NewMesh());
     nglib::Ng_Mesh* mesh = guard.mesh;
 
-    for (const point& x : points)
+    for (const point3& x : points)
     {
         double xyz[3] = {x[0], x[1], x[2]};
         nglib::Ng_AddPoint(mesh, xyz);
     }
-    for (const triFace& t : triangles)
+    for (const triVerts& t : triangles)
     {
         // 1-based; Ng_NewMesh's face descriptor has DomainIn 1, DomainOut 0:
         // triangles must point outward (right-hand rule)
-        int pi[3] = {t[0] + 1, t[1] + 1, t[2] + 1};
+        int pi[3] = {int(t[0] + 1), int(t[1] + 1), int(t[2] + 1)};
         nglib::Ng_AddSurfaceElement(mesh, nglib::NG_TRIG, pi);
     }
 

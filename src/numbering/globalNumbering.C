@@ -1,4 +1,6 @@
 #include "globalNumbering.H"
+#include "failTogether.H"
+#include "labelLimit.H"
 #include "pmshError.H"
 
 #include <algorithm>
@@ -11,10 +13,34 @@ namespace
 struct numberedId
 {
     pmsh::barycentricId id;
-    pmsh::globalLabel number;
+    pmsh::label number;
 };
 
 } // End anonymous namespace
+
+
+pmsh::globalRange pmsh::numberRankByRank
+(
+    const Communicator& comm,
+    std::int64_t count,
+    const std::string& what,
+    std::int64_t first
+)
+{
+    globalRange range;
+    range.start = first + comm.exclusiveScan(count);
+    range.end = first + comm.sum(count);
+    try
+    {
+        checkFitsLabel(range.end, what);
+    }
+    catch (const FatalError& e)
+    {
+        // Every rank has the same end: all stop here, the master says why
+        throw collectiveFailure(e, comm.master());
+    }
+    return range;
+}
 
 
 std::vector<int> pmsh::holderRanks
@@ -73,8 +99,7 @@ pmsh::globalPointNumbering::globalPointNumbering
     const CoarseMesh& coarse,
     const std::vector<label>& cellPart,
     const FineSurface& surface,
-    label nLocalPoints,
-    globalLabel baseOffset
+    label nLocalPoints
 )
 :
     globalIds_(nLocalPoints, -1)
@@ -118,8 +143,9 @@ pmsh::globalPointNumbering::globalPointNumbering
     {
         nOwned_ += (owner[p] == me);
     }
-    globalLabel next = baseOffset + comm.exclusiveScan(nOwned_);
-    nGlobal_ = comm.sum(std::int64_t(nOwned_));
+    const globalRange range = numberRankByRank(comm, nOwned_, "points");
+    label next = label(range.start);
+    nGlobal_ = label(range.end);
 
     // Number what we own, in local order, and tell the other holders
     std::vector<std::vector<numberedId>> send(comm.size());

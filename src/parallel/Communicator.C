@@ -1,4 +1,5 @@
 #include "Communicator.H"
+#include "foamShims.H"
 #include "pmshError.H"
 
 #include "Pstream.H"
@@ -73,8 +74,7 @@ Foam::List<T> gatherAll(T x)
 {
     Foam::List<T> all(Foam::UPstream::nProcs(), x);
     all[Foam::UPstream::myProcNo()] = x;
-    Foam::Pstream::gatherList(all);
-    Foam::Pstream::scatterList(all);
+    pmsh::foam::allGatherList(all);
     return all;
 }
 
@@ -155,7 +155,7 @@ void pmsh::Communicator::broadcastBytes(std::vector<char>& bytes) const
     {
         buffer = Foam::UList<char>(bytes.data(), Foam::label(bytes.size()));
     }
-    Foam::Pstream::scatter(buffer);
+    pmsh::foam::broadcast(buffer);
     bytes.assign(buffer.begin(), buffer.end());
     traffic_.broadcastBytes += double(bytes.size());
 }

@@ -21,8 +21,8 @@ constexpr label internalFace = std::numeric_limits<label>::max();
 // A tet on its way to another rank, with everything it needs there
 struct movedTet
 {
-    std::array<globalLabel, 4> globalIds;
-    std::array<point, 4> points;
+    std::array<label, 4> globalIds;
+    std::array<point3, 4> points;
     std::array<barycentricId, 4> pointIds;
     std::array<label, 4> across;        //!< per outward face
     label zone;
@@ -252,8 +252,8 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
     // The new mesh: the staying tets' points in their order, then the
     // points that came with others (each once, by global number)
     rankTets out;
-    std::unordered_map<globalLabel, label> pointOf;
-    auto addPoint = [&](globalLabel g, const point& x, const barycentricId& id)
+    std::unordered_map<label, label> pointOf;
+    auto addPoint = [&](label g, const point3& x, const barycentricId& id)
     {
         const auto inserted = pointOf.emplace(g, label(out.points.size()));
         if (inserted.second)
@@ -265,7 +265,7 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
         return inserted.first->second;
     };
     const bool zoned = !mesh.tetZone.empty();
-    auto addTet = [&](const tetCell& t, const std::array<label, 4>& across, label zone)
+    auto addTet = [&](const tetVerts& t, const std::array<label, 4>& across, label zone)
     {
         out.tets.push_back(t);
         if (zoned) out.tetZone.push_back(zone);
@@ -281,8 +281,8 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
     };
     for (std::size_t i = 0; i < staying.size(); ++i)
     {
-        const tetCell& old = mesh.tets[staying[i]];
-        tetCell t;
+        const tetVerts& old = mesh.tets[staying[i]];
+        tetVerts t;
         for (int k = 0; k < 4; ++k)
         {
             t[k] = addPoint
@@ -299,7 +299,7 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
     {
         for (const movedTet& m : fromRank)
         {
-            tetCell t;
+            tetVerts t;
             for (int k = 0; k < 4; ++k)
             {
                 t[k] = addPoint(m.globalIds[k], m.points[k], m.pointIds[k]);

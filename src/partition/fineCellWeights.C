@@ -8,7 +8,7 @@ namespace
 
 using namespace pmsh;
 
-double distance(const point& a, const point& b)
+double distance(const point3& a, const point3& b)
 {
     return std::sqrt(magSqr(b - a));
 }
@@ -33,7 +33,7 @@ std::vector<double> pmsh::fineCellWeights
     // Vertex sizes: the mean length of the edges at a vertex (every edge
     // counted once per cell holding it: a fair average all the same)
     std::vector<double> size(nPoints, 0), count(nPoints, 0);
-    for (const tetCell& t : coarse.tets)
+    for (const tetVerts& t : coarse.tets)
     {
         for (const auto& e : tetEdges)
         {
@@ -54,7 +54,7 @@ std::vector<double> pmsh::fineCellWeights
     for (int pass = 0; pass < 2; ++pass)
     {
         std::vector<double> sum(nPoints, 0);
-        for (const tetCell& t : coarse.tets)
+        for (const tetVerts& t : coarse.tets)
         {
             for (const auto& e : tetEdges)
             {
@@ -74,7 +74,7 @@ std::vector<double> pmsh::fineCellWeights
     std::vector<double> weights(nCells);
     for (label c = 0; c < nCells; ++c)
     {
-        const tetCell& t = coarse.tets[c];
+        const tetVerts& t = coarse.tets[c];
         const auto& x = coarse.points;
         const double volume = tetVolume6(x[t[0]], x[t[1]], x[t[2]], x[t[3]])/6;
         const double h = 0.25*(size[t[0]] + size[t[1]] + size[t[2]] + size[t[3]]);
@@ -82,7 +82,7 @@ std::vector<double> pmsh::fineCellWeights
 
         // Inside a refinement region the volume mesher is held to the
         // region's size, as to H in a uniform mesh: 1/h^3 there
-        const point centroid = 0.25*(x[t[0]] + x[t[1]] + x[t[2]] + x[t[3]]);
+        const point3 centroid = 0.25*(x[t[0]] + x[t[1]] + x[t[2]] + x[t[3]]);
         for (const sizeRegion& r : regions)
         {
             if (r.size < H && r.contains(centroid))
@@ -103,7 +103,7 @@ std::vector<double> pmsh::fineCellWeights
             {
                 continue;
             }
-            const triFace& f = coarse.boundary[boundaryFaceOf(nbr)].v;
+            const triVerts& f = coarse.boundary[boundaryFaceOf(nbr)].v;
             const auto& x = coarse.points;
             const double area =
                 0.5*std::sqrt(magSqr(cross(x[f[1]] - x[f[0]], x[f[2]] - x[f[0]])));

@@ -1,6 +1,7 @@
 #include "partitionCoarseMesh.H"
 #include "pmshError.H"
 #include "failTogether.H"
+#include "foamShims.H"
 #include "Info.H"
 
 // OpenFOAM
@@ -24,7 +25,7 @@ namespace
 
 using namespace pmsh;
 
-bool tetHas(const tetCell& t, label p)
+bool tetHas(const tetVerts& t, label p)
 {
     return std::find(t.begin(), t.end(), p) != t.end();
 }
@@ -32,9 +33,9 @@ bool tetHas(const tetCell& t, label p)
 
 // Does face f (outwardTetFaces order) of tet t contain all points of the
 // entity (one vertex, or the two ends of an edge)?
-bool faceContains(const tetCell& t, int f, const std::vector<label>& entity)
+bool faceContains(const tetVerts& t, int f, const std::vector<label>& entity)
 {
-    const triFace face = outwardTetFaces(t)[f];
+    const triVerts face = outwardTetFaces(t)[f];
     for (label p : entity)
     {
         if (std::find(face.begin(), face.end(), p) == face.end())
@@ -149,7 +150,7 @@ std::vector<label> components
     bool onBoundary = false;
     for (label i = 0; i < label(cells.size()); ++i)
     {
-        const tetCell& t = coarse.tets[cells[i]];
+        const tetVerts& t = coarse.tets[cells[i]];
         for (int f = 0; f < 4; ++f)
         {
             if (!faceContains(t, f, entity))
@@ -507,7 +508,7 @@ bool moveIfManifold
 {
     const label from = cellPart[c];
     cellPart[c] = to;
-    const tetCell& t = coarse.tets[c];
+    const tetVerts& t = coarse.tets[c];
     bool ok = true;
     for (int i = 0; i < 4 && ok; ++i)
     {
@@ -729,13 +730,13 @@ class foamErrorsThrow
 public:
     foamErrorsThrow()
     :
-        error_(Foam::FatalError.throwExceptions(true)),
-        ioError_(Foam::FatalIOError.throwExceptions(true))
+        error_(foam::throwExceptions(Foam::FatalError, true)),
+        ioError_(foam::throwExceptions(Foam::FatalIOError, true))
     {}
     ~foamErrorsThrow()
     {
-        Foam::FatalIOError.throwExceptions(ioError_);
-        Foam::FatalError.throwExceptions(error_);
+        foam::throwExceptions(Foam::FatalIOError, ioError_);
+        foam::throwExceptions(Foam::FatalError, error_);
     }
     foamErrorsThrow(const foamErrorsThrow&) = delete;
     foamErrorsThrow& operator=(const foamErrorsThrow&) = delete;
@@ -796,15 +797,11 @@ const std::set<std::string> meshOnlyMethods{"manual", "structured"};
 std::vector<std::string> knownMethods()
 {
     std::vector<std::string> methods;
-    const auto* table = Foam::decompositionMethod::dictionaryConstructorTablePtr_;
-    if (table)
+    for (const Foam::word& name : foam::decompositionMethodNames())
     {
-        for (const Foam::word& name : table->sortedToc())
+        if (!meshOnlyMethods.count(name))
         {
-            if (!meshOnlyMethods.count(name))
-            {
-                methods.push_back(name);
-            }
+            methods.push_back(name);
         }
     }
     return methods;
@@ -957,8 +954,8 @@ std::vector<label> decomposeCells
         }
         nbrs.setSize(n);
 
-        const tetCell& t = coarse.tets[c];
-        const point centroid = 0.25*
+        const tetVerts& t = coarse.tets[c];
+        const point3 centroid = 0.25*
         (
             (coarse.points[t[0]] + coarse.points[t[1]])
           + (coarse.points[t[2]] + coarse.points[t[3]])
@@ -972,7 +969,7 @@ std::vector<label> decomposeCells
         const foamErrorsThrow throwing;
         const serialSection serial;
         Foam::autoPtr<Foam::decompositionMethod> decomposer =
-            Foam::decompositionMethod::New(dict);
+            foam::newDecompositionMethod(dict);
         decomp = decomposer->decompose(cellCells, centres, weights);
     }
     catch (const Foam::error& e)
@@ -1025,7 +1022,7 @@ std::vector<label> decomposeCells
 Foam::fileName pmsh::decompositionDictFile(const Foam::argList& args)
 {
     Foam::fileName file;
-    if (args.readIfPresent("decomposeParDict", file))
+    if (foam::readIfPresent(args, "decomposeParDict", file))
     {
         // As argList resolves it for a parallel run (it leaves it as given
         // in a serial one)
@@ -1033,15 +1030,15 @@ Foam::fileName pmsh::decompositionDictFile(const Foam::argList& args)
         {
             file /= "decomposeParDict";
         }
-        if (!file.isAbsolute() && !file.starts_with('.'))
+        if (!file.isAbsolute() && file.compare(0, 1, ".") != 0)
         {
-            file = args.globalPath()/file;
+            file = foam::globalPath(args)/file;
         }
         file.expand();
         file.clean();
         return file;
     }
-    return args.globalPath()/"system"/"decomposeParDict";
+    return foam::globalPath(args)/"system"/"decomposeParDict";
 }
 
 
@@ -1113,8 +1110,8 @@ Foam::dictionary pmsh::decompositionDict
         try
         {
             const foamErrorsThrow throwing;
-            inFile = dict.lookup("numberOfSubdomains").toString();
-            dict.readEntry("numberOfSubdomains", n);
+            inFile = foam::tokensString(dict.lookup("numberOfSubdomains"));
+            n = foam::get<Foam::label>(dict, "numberOfSubdomains");
         }
         catch (const Foam::error&)
         {
@@ -1141,7 +1138,7 @@ Foam::dictionary pmsh::decompositionDict(const Foam::argList& args, int nParts)
     (
         decompositionDictFile(args),
         nParts,
-        args.found("decomposeParDict")
+        foam::found(args, "decomposeParDict")
     );
 }
 

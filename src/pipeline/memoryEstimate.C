@@ -44,8 +44,10 @@
 \*---------------------------------------------------------------------------*/
 
 #include "memoryEstimate.H"
+#include "foamShims.H"
 
 #include "Info.H"
+#include "labelLimit.H"
 #include "OSspecific.H"
 #include "Pstream.H"
 #include "stageClock.H"
@@ -132,6 +134,26 @@ std::string plural(double n, const std::string& word)
     return count(n) + ' ' + word + (n == 1 ? "" : "s");
 }
 
+
+//- The entry refinementLevels, as every other pmshDict error names it:
+//  Entry 'refinementLevels' in dictionary "<file>" (line <n>) is <r>
+std::string refinementLevelsEntry(const pmsh::meshSettings& settings)
+{
+    std::ostringstream os;
+    os  << "Entry 'refinementLevels' in dictionary \"" << settings.dictFile
+        << "\"";
+    if (settings.refinementLevelsLine > 0)
+    {
+        os  << " (line " << settings.refinementLevelsLine << ") is "
+            << settings.refinementLevels;
+    }
+    else
+    {
+        os  << " is not given: the default " << settings.refinementLevels;
+    }
+    return os.str();
+}
+
 } // End anonymous namespace
 
 
@@ -185,7 +207,7 @@ std::string pmsh::memorySizeName(double bytes)
 void pmsh::checkMemoryEstimate
 (
     const meshSettings& settings,
-    globalLabel coarseCells,
+    std::int64_t coarseCells,
     double weightedFineCells,
     int nRanks,
     int ranksOnMachine,
@@ -220,19 +242,8 @@ void pmsh::checkMemoryEstimate
     const double leastFineCells = f.leastCellsPerWeighted*weightedFineCells;
 
     std::ostringstream os;
-
-    // The entry, as every other pmshDict error names it
-    os  << "Entry 'refinementLevels' in dictionary \"" << settings.dictFile
-        << "\"";
-    if (settings.refinementLevelsLine > 0)
-    {
-        os  << " (line " << settings.refinementLevelsLine << ") is " << r;
-    }
-    else
-    {
-        os  << " is not given: the default " << r;
-    }
-    os  << ": the mesh cannot fit in the memory of this machine.\n";
+    os  << refinementLevelsEntry(settings)
+        << ": the mesh cannot fit in the memory of this machine.\n";
 
     os  << "The " << coarseCells << " coarse cells refined " << r << " times"
         << " give about " << count(e.fineCells) << " fine cells with"
@@ -313,6 +324,61 @@ void pmsh::checkMemoryEstimate
 }
 
 
+void pmsh::checkLabelEstimate
+(
+    const meshSettings& settings,
+    std::int64_t coarseCells,
+    double weightedFineCells,
+    std::int64_t maxLabel
+)
+{
+    // A tet mesh has at least two faces a cell (four faces, each shared by
+    // at most two cells): the least faces, from the least fine cells
+    const mesherFigures& f = figuresOf(settings.volumeMesher, settings.coarseMesher);
+    auto leastFaces = [&](double weighted)
+    {
+        return 2*f.leastCellsPerWeighted*weighted;
+    };
+    if (leastFaces(weightedFineCells) <= double(maxLabel))
+    {
+        return;
+    }
+
+    const int r = settings.refinementLevels;
+    std::ostringstream os;
+    os  << refinementLevelsEntry(settings)
+        << ": the mesh is too large for this OpenFOAM's " << labelBits
+        << "-bit labels (largest label " << maxLabel << ").\n"
+        << "The " << coarseCells << " coarse cells refined " << r << " times"
+        << " give about "
+        << count(f.cellsPerWeighted*weightedFineCells) << " fine cells with"
+        << " volumeMesher " << settings.volumeMesher << ", at least "
+        << count(f.leastCellsPerWeighted*weightedFineCells) << ", so at least "
+        << count(leastFaces(weightedFineCells)) << " faces.\n"
+        << "Use pmshFoam built with an OpenFOAM of WM_LABEL_SIZE=64 (see"
+        << " pmshFoam's README, Building), or fewer cells: ";
+    int fitLevels = -1;
+    for (int l = r - 1; l >= 0; --l)
+    {
+        if (leastFaces(weightedFineCells/std::pow(8.0, r - l)) <= double(maxLabel))
+        {
+            fitLevels = l;
+            break;
+        }
+    }
+    if (fitLevels >= 0)
+    {
+        os  << "at most " << fitLevels << " refinementLevels with this"
+            << " maxCellSize, or a larger maxCellSize";
+    }
+    else
+    {
+        os  << "a larger maxCellSize";
+    }
+    throw FatalError(os.str(), "pmsh::checkLabelEstimate");
+}
+
+
 int pmsh::ranksOnThisMachine(const Communicator& comm)
 {
     if (!comm.parallel())
@@ -322,8 +388,7 @@ int pmsh::ranksOnThisMachine(const Communicator& comm)
     // Ranks whose host name is this rank's
     Foam::List<Foam::string> hosts(Foam::UPstream::nProcs());
     hosts[Foam::UPstream::myProcNo()] = Foam::hostName();
-    Foam::Pstream::gatherList(hosts);
-    Foam::Pstream::scatterList(hosts);
+    foam::allGatherList(hosts);
     int n = 0;
     for (const Foam::string& host : hosts)
     {
@@ -337,7 +402,7 @@ pmsh::memoryEstimate pmsh::estimateAndCheckMemory
 (
     const Communicator& comm,
     const meshSettings& settings,
-    globalLabel coarseCells,
+    std::int64_t coarseCells,
     double weightedFineCells,
     bool check
 )
@@ -358,6 +423,9 @@ pmsh::memoryEstimate pmsh::estimateAndCheckMemory
         << memorySizeName(ranksOnMachine*e.bytesPerRank) << " for the "
         << plural(ranksOnMachine, "rank") << " on the master's machine of "
         << memorySizeName(machineBytes) << '\n';
+
+    // Labels are a hard limit of the build: no option skips this
+    checkLabelEstimate(settings, coarseCells, weightedFineCells);
 
     if (check)
     {

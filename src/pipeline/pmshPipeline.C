@@ -155,9 +155,9 @@ void pmsh::logLocalSizes(const CoarseMesh& coarse, const meshSettings& settings)
     {
         label nCells = 0;
         double sum = 0;
-        for (const tetCell& t : coarse.tets)
+        for (const tetVerts& t : coarse.tets)
         {
-            const point centroid =
+            const point3 centroid =
                 0.25*(coarse.points[t[0]] + coarse.points[t[1]]
                     + coarse.points[t[2]] + coarse.points[t[3]]);
             if (r.contains(centroid))
@@ -341,7 +341,7 @@ pmsh::coarseMeshParameters pmsh::coarseParameters
 }
 
 
-pmsh::globalLabel pmsh::logVolumeMeshing
+std::int64_t pmsh::logVolumeMeshing
 (
     const Communicator& comm,
     const partitionVolumeResult& volume
@@ -355,7 +355,7 @@ pmsh::globalLabel pmsh::logVolumeMeshing
             << " at attempt " << volume.attempts << "; earlier attempts:"
             << volume.failures << '\n';
     }
-    const globalLabel nCells = comm.sum(std::int64_t(tets.tets.size()));
+    const std::int64_t nCells = comm.sum(std::int64_t(tets.tets.size()));
     const minAvgMax n = reduceMinAvgMax(comm, double(tets.tets.size()));
     Info() << std::fixed << std::setprecision(0);
     if (comm.parallel())
@@ -494,7 +494,7 @@ void pmsh::reportSummary
     label coarseCells,
     const std::string& coarseMesher,
     const partitionVolumeResult& volume,
-    globalLabel nFineCells,
+    std::int64_t nFineCells,
     const meshQualityReport& quality,
     const stageLog& stages,
     const memoryEstimate& estimate,

@@ -94,7 +94,7 @@ void pmsh::orderCyclicFaces
     struct boundaryFace
     {
         cyclicKey key;
-        triFace face;
+        triVerts face;
         label owner;
     };
     std::vector<std::vector<boundaryFace>> kept(mesh.patches.size());
@@ -105,7 +105,7 @@ void pmsh::orderCyclicFaces
         const meshPatch& patch = mesh.patches[pi];
         for (label facei = patch.start; facei < patch.start + patch.size; ++facei)
         {
-            const triFace& f = mesh.faces[facei];
+            const triVerts& f = mesh.faces[facei];
             if (!patch.isCyclic())
             {
                 kept[pi].push_back({{}, f, mesh.owner[facei]});
@@ -114,7 +114,7 @@ void pmsh::orderCyclicFaces
             cyclicKey k{key(f[0]), key(f[1]), key(f[2])};
             // Start at the point of lowest key, keeping the orientation
             const int first = int(std::min_element(k.begin(), k.end()) - k.begin());
-            const triFace rotated{f[first], f[(first + 1) % 3], f[(first + 2) % 3]};
+            const triVerts rotated{f[first], f[(first + 1) % 3], f[(first + 2) % 3]};
             std::sort(k.begin(), k.end());
             cyclicFaces.push_back({label(pi), {k, rotated, mesh.owner[facei]}});
         }

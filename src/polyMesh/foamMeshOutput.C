@@ -1,4 +1,5 @@
 #include "foamMeshOutput.H"
+#include "foamShims.H"
 #include "pmshError.H"
 
 #include "processorPolyPatch.H"
@@ -34,7 +35,7 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
     pointField points(label(mesh.points.size()));
     forAll(points, i)
     {
-        const pmsh::point& p = mesh.points[i];
+        const pmsh::point3& p = mesh.points[i];
         points[i] = Foam::vector(p[0], p[1], p[2]);
     }
     mesh.points = {};
@@ -43,7 +44,7 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
     // List<face> forbids this (List::shallowCopy is deleted, as a List
     // owns its storage): the view is set through UList, and the destructor
     // takes every view back before the faceList would free it
-    static_assert(sizeof(triFace) == 3*sizeof(label), "triangles are 3 contiguous labels");
+    static_assert(sizeof(triVerts) == 3*sizeof(label), "triangles are 3 contiguous labels");
     triangles_ = std::move(mesh.faces);
     faceList faces(label(triangles_.size()));
     forAll(faces, i)
@@ -91,11 +92,10 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
         }
         else if (p.isProcessorCyclic())
         {
-            patches[i] = new processorCyclicPolyPatch
+            patches[i] = foam::newProcessorCyclicPatch
             (
                 p.size, p.start, i, mesh_->boundaryMesh(),
-                UPstream::myProcNo(), p.neighbProcNo, word(p.neighbourPatch),
-                coupledPolyPatch::TRANSLATIONAL
+                UPstream::myProcNo(), p.neighbProcNo, word(p.neighbourPatch)
             );
         }
         else if (p.isCyclic())
@@ -162,9 +162,9 @@ void pmsh::foamRankMesh::addZones(const tetPolyMesh& mesh)
     List<cellZone*> cellZones(nZones);
     forAll(cellZones, z)
     {
-        cellZones[z] = new cellZone
+        cellZones[z] = foam::newCellZone
         (
-            mesh.zoneNames[z], cells[z].shrink(), z, mesh_->cellZones()
+            mesh.zoneNames[z], cells[z].shrink(), z, *mesh_
         );
     }
 
@@ -226,10 +226,10 @@ void pmsh::foamRankMesh::addZones(const tetPolyMesh& mesh)
     List<faceZone*> faceZones(pairIndex.size());
     for (const auto& [pair, z] : pairIndex)
     {
-        faceZones[z] = new faceZone
+        faceZones[z] = foam::newFaceZone
         (
             zonePairName(mesh.zoneNames[pair.first], mesh.zoneNames[pair.second]),
-            faces[z].shrink(), boolList(flips[z]), z, mesh_->faceZones()
+            faces[z].shrink(), boolList(flips[z]), z, *mesh_
         );
     }
     mesh_->addZones(List<pointZone*>(), faceZones, cellZones);
@@ -331,41 +331,6 @@ pmsh::foamRankMesh::~foamRankMesh()
 }
 
 
-void pmsh::checkGlobalNumbersFitLabel
-(
-    const Communicator& comm,
-    const procAddressing& addressing,
-    globalLabel maxLabel
-)
-{
-    // The largest global number of each kind (faces are stored as +-(f + 1))
-    auto largest = [](const std::vector<globalLabel>& v)
-    {
-        globalLabel m = 0;
-        for (globalLabel x : v) m = std::max(m, std::abs(x));
-        return m;
-    };
-    const globalLabel points = comm.max(std::int64_t(largest(addressing.point)));
-    const globalLabel cells = comm.max(std::int64_t(largest(addressing.cell)));
-    const globalLabel faces = comm.max(std::int64_t(largest(addressing.face)));
-    if (std::max({points, cells, faces}) > maxLabel)
-    {
-        throw FatalError
-        (
-            msg() << "The mesh is too large for this OpenFOAM's " << 8*sizeof(Foam::label)
-                << "-bit labels (largest label " << maxLabel << "): its global numbers reach "
-                << points << " (points), " << cells << " (cells) and " << faces
-                << " (faces, counted from 1)\n"
-                << "The processor meshes would fit, but their procAddressing and the"
-                << " reconstructed mesh would not.\n"
-                << "Use an OpenFOAM built with WM_LABEL_SIZE=64, or fewer cells"
-                << " (larger maxCellSize or fewer refinementLevels)",
-            "checkGlobalNumbersFitLabel"
-        );
-    }
-}
-
-
 namespace
 {
 
@@ -373,7 +338,7 @@ void writeLabelIOList
 (
     const Foam::Time& time,
     const Foam::word& name,
-    const std::vector<pmsh::globalLabel>& values
+    const std::vector<pmsh::label>& values
 )
 {
     Foam::labelIOList list

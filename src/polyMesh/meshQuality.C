@@ -1,4 +1,5 @@
 #include "meshQuality.H"
+#include "foamShims.H"
 #include "Info.H"
 #include "stageLog.H"
 
@@ -164,7 +165,7 @@ pmsh::meshQualityReport pmsh::meshQualityOf
     // centres (swapped inside, collective)
     pointField neighbourCentres;
     syncTools::swapBoundaryCellPositions(mesh, centres, neighbourCentres);
-    std::vector<bool> coupled(mesh.nBoundaryFaces(), false);
+    std::vector<bool> coupled(mesh.nFaces() - nInternal, false);
     for (const polyPatch& pp : mesh.boundaryMesh())
     {
         if (pp.coupled())
@@ -179,7 +180,7 @@ pmsh::meshQualityReport pmsh::meshQualityOf
     // As checkMesh: non-orthogonality over internal faces and one side of
     // each processor face (uncoupled boundary faces have none), skewness
     // over every face
-    const bitSet counted(syncTools::getInternalOrMasterFaces(mesh));
+    const std::vector<bool> counted = pmsh::foam::internalOrMasterFaces(mesh);
     const double severeCos = std::cos(degToRad(70.0));
     double minCos = 1, sumCos = 0, minProcessorCos = 1, maxSkew = 0;
     std::int64_t nCounted = 0, nSevere = 0;
@@ -202,7 +203,7 @@ pmsh::meshQualityReport pmsh::meshQualityOf
         const Foam::vector d = neiCc - ownCc;
         const double ortho = (d & s)/(mag(d)*mag(s) + ROOTVSMALL);
         maxSkew = std::max(maxSkew, double(skewness(p, f, c, s, Cpf, d, 0.2)));
-        if (counted.test(facei))
+        if (counted[facei])
         {
             minCos = std::min(minCos, ortho);
             sumCos += ortho;

@@ -1,14 +1,38 @@
 #include "procAddressing.H"
+#include "globalNumbering.H"
 #include "pmshError.H"
 
 #include <algorithm>
 #include <numeric>
 
+pmsh::procAddressingStarts pmsh::procAddressingStartsOf
+(
+    const Communicator& comm,
+    std::int64_t nCells,
+    std::int64_t nInternalBlock,
+    const std::vector<std::int64_t>& nPatchFaces
+)
+{
+    procAddressingStarts starts;
+    starts.cell = numberRankByRank(comm, nCells, "cells").start;
+    const globalRange internal = numberRankByRank(comm, nInternalBlock, "faces");
+    starts.internalFace = internal.start;
+    std::int64_t patchStart = internal.end;
+    for (const std::int64_t n : nPatchFaces)
+    {
+        const globalRange faces = numberRankByRank(comm, n, "faces", patchStart);
+        starts.patchFace.push_back(faces.start);
+        patchStart = faces.end;
+    }
+    return starts;
+}
+
+
 pmsh::procAddressing pmsh::buildProcAddressing
 (
     const Communicator& comm,
     const tetPolyMesh& mesh,
-    const std::vector<globalLabel>& globalPointIds
+    const std::vector<label>& globalPointIds
 )
 {
     const int me = comm.rank();
@@ -18,13 +42,49 @@ pmsh::procAddressing pmsh::buildProcAddressing
     procAddressing addr;
     addr.point = globalPointIds;
 
-    const globalLabel cellOffset = comm.exclusiveScan(mesh.nCells);
+    // The counts: cells; internal faces and processor faces to higher
+    // ranks (the lower rank's block holds a processor face); the faces of
+    // each physical patch, a cyclic patch's faces whose image is on
+    // another rank (its processorCyclic patches) after the rank's own
+    std::int64_t nInternalBlock = nInternal;
+    std::vector<std::vector<const meshPatch*>> physicalParts;
+    std::vector<std::int64_t> nPatchFaces;
+    for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
+    {
+        const meshPatch& p = mesh.patches[pi];
+        if (p.isProcessor() && p.neighbProcNo > me)
+        {
+            nInternalBlock += p.size;
+        }
+        if (!p.isPhysical())
+        {
+            addr.boundary.push_back(-1);
+            continue;
+        }
+        addr.boundary.push_back(label(pi));
+        std::vector<const meshPatch*> parts{&p};
+        std::int64_t n = p.size;
+        for (const meshPatch& q : mesh.patches)
+        {
+            if (q.isProcessorCyclic() && q.neighbourPatch == p.name)
+            {
+                parts.push_back(&q);
+                n += q.size;
+            }
+        }
+        physicalParts.push_back(std::move(parts));
+        nPatchFaces.push_back(n);
+    }
+    const procAddressingStarts starts =
+        procAddressingStartsOf(comm, mesh.nCells, nInternalBlock, nPatchFaces);
+
+    const label cellOffset = label(starts.cell);
     addr.cell.resize(mesh.nCells);
     std::iota(addr.cell.begin(), addr.cell.end(), cellOffset);
 
     // 1. Tell each neighbour the global cells behind our processor faces,
     //    in patch order (face i on both sides is the same face)
-    std::vector<std::vector<globalLabel>> ownerCells(nRanks);
+    std::vector<std::vector<label>> ownerCells(nRanks);
     for (const meshPatch& p : mesh.patches)
     {
         if (!p.isProcessor()) continue;
@@ -38,12 +98,12 @@ pmsh::procAddressing pmsh::buildProcAddressing
     // 2. Our block of global internal faces: for each cell in order, its
     //    internal faces (neighbours within this rank come first, being
     //    lower), then its processor faces to higher ranks by neighbour cell
-    struct procFace { label cell; globalLabel nbrCell; label face; };
+    struct procFace { label cell; label nbrCell; label face; };
     std::vector<procFace> upperFaces;
     for (const meshPatch& p : mesh.patches)
     {
         if (!p.isProcessor() || p.neighbProcNo < me) continue;
-        const std::vector<globalLabel>& nbr = neighbourCells[p.neighbProcNo];
+        const std::vector<label>& nbr = neighbourCells[p.neighbProcNo];
         if (label(nbr.size()) != p.size)
         {
             throw FatalError
@@ -67,18 +127,15 @@ pmsh::procAddressing pmsh::buildProcAddressing
         }
     );
 
-    const globalLabel blockSize = nInternal + globalLabel(upperFaces.size());
-    const globalLabel blockOffset = comm.exclusiveScan(blockSize);
-    const globalLabel nGlobalInternal = comm.sum(blockSize);
-
+    // Faces are +(index + 1)
     addr.face.assign(mesh.nFaces(), 0);
-    globalLabel next = blockOffset;
+    label next = label(starts.internalFace);
     std::size_t u = 0;
     for (label f = 0; f < nInternal; ++f)
     {
         while (u < upperFaces.size() && upperFaces[u].cell < mesh.owner[f])
         {
-            addr.face[upperFaces[u++].face] = ++next;     // +(index + 1)
+            addr.face[upperFaces[u++].face] = ++next;
         }
         addr.face[f] = ++next;
     }
@@ -88,7 +145,7 @@ pmsh::procAddressing pmsh::buildProcAddressing
     }
 
     // 3. The higher rank takes the lower rank's numbers, reversed
-    std::vector<std::vector<globalLabel>> numbersToHigher(nRanks);
+    std::vector<std::vector<label>> numbersToHigher(nRanks);
     for (const meshPatch& p : mesh.patches)
     {
         if (!p.isProcessor() || p.neighbProcNo < me) continue;
@@ -101,48 +158,24 @@ pmsh::procAddressing pmsh::buildProcAddressing
     for (const meshPatch& p : mesh.patches)
     {
         if (!p.isProcessor() || p.neighbProcNo > me) continue;
-        const std::vector<globalLabel>& numbers = fromLower[p.neighbProcNo];
+        const std::vector<label>& numbers = fromLower[p.neighbProcNo];
         for (label i = 0; i < p.size; ++i)
         {
             addr.face[p.start + i] = -numbers[i];
         }
     }
 
-    // 4. Physical patches: rank by rank within each patch. A cyclic
-    //    patch's faces whose image is on another rank (its processorCyclic
-    //    patches) are faces of the cyclic patch, after the rank's own
-    globalLabel patchStart = nGlobalInternal;
-    for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
+    // 4. Physical patches: rank by rank within each patch
+    for (std::size_t k = 0; k < physicalParts.size(); ++k)
     {
-        const meshPatch& p = mesh.patches[pi];
-        if (!p.isPhysical())
-        {
-            addr.boundary.push_back(-1);
-            continue;
-        }
-        addr.boundary.push_back(globalLabel(pi));
-        std::vector<const meshPatch*> parts{&p};
-        for (const meshPatch& q : mesh.patches)
-        {
-            if (q.isProcessorCyclic() && q.neighbourPatch == p.name)
-            {
-                parts.push_back(&q);
-            }
-        }
-        label nLocal = 0;
-        for (const meshPatch* q : parts)
-        {
-            nLocal += q->size;
-        }
-        globalLabel next = patchStart + comm.exclusiveScan(nLocal);
-        for (const meshPatch* q : parts)
+        label next = label(starts.patchFace[k]);
+        for (const meshPatch* q : physicalParts[k])
         {
             for (label i = 0; i < q->size; ++i)
             {
                 addr.face[q->start + i] = ++next;
             }
         }
-        patchStart += comm.sum(std::int64_t(nLocal));
     }
     return addr;
 }

@@ -19,13 +19,13 @@ const char* const where = "tetsToPolyMesh";
 //  regions (the tets and the surface are matched afterwards).
 void checkInput
 (
-    const std::vector<point>& points,
-    const std::vector<tetCell>& tets,
-    const std::vector<triFace>& boundaryTriangles,
+    const std::vector<point3>& points,
+    const std::vector<tetVerts>& tets,
+    const std::vector<triVerts>& boundaryTriangles,
     const std::vector<label>& boundaryRegion,
     const std::vector<meshPatch>& physicalPatches,
     label myProcNo,
-    const std::vector<globalLabel>& globalPointIds
+    const std::vector<label>& globalPointIds
 )
 {
     const std::size_t nPoints = points.size();
@@ -91,7 +91,7 @@ void checkInput
     problemCount badIndex, badVolume;
     for (std::size_t t = 0; t < nTets; ++t)
     {
-        const tetCell& c = tets[t];
+        const tetVerts& c = tets[t];
         bool inRange = true;
         for (const label v : c)
         {
@@ -115,7 +115,7 @@ void checkInput
     }
     for (std::size_t b = 0; b < nTris; ++b)
     {
-        const triFace& f = boundaryTriangles[b];
+        const triVerts& f = boundaryTriangles[b];
         if (std::any_of(f.begin(), f.end(), [&](label v) { return v < 0 || std::size_t(v) >= nPoints; }))
         {
             badIndex.add([&] { return "boundary triangle " + std::to_string(b); });
@@ -199,7 +199,7 @@ void checkInput
 void addInternalFaces
 (
     tetPolyMesh& mesh,
-    const std::vector<tetCell>& tets,
+    const std::vector<tetVerts>& tets,
     const std::vector<faceId>& across
 )
 {
@@ -237,7 +237,7 @@ void addInternalFaces
 void addPhysicalPatches
 (
     tetPolyMesh& mesh,
-    const std::vector<tetCell>& tets,
+    const std::vector<tetVerts>& tets,
     const std::vector<faceId>& across,
     const std::vector<label>& boundaryRegion,
     const std::vector<meshPatch>& physicalPatches
@@ -300,18 +300,18 @@ void addPhysicalPatches
 void addProcessorPatches
 (
     tetPolyMesh& mesh,
-    const std::vector<tetCell>& tets,
+    const std::vector<tetVerts>& tets,
     const std::vector<faceId>& across,
     const std::vector<label>& boundaryRegion,
     label myProcNo,
-    const std::vector<globalLabel>& globalPointIds
+    const std::vector<label>& globalPointIds
 )
 {
     const faceId nTetFaces = faceId(4*tets.size());
     struct processorFace
     {
         label neighbProcNo;
-        std::array<globalLabel, 3> key;
+        std::array<label, 3> key;
         faceId id;
 
         bool operator<(const processorFace& o) const
@@ -364,7 +364,7 @@ void addProcessorPatches
         ++mesh.patches.back().size;
 
         // Rotated so that the point with the smallest global id comes first
-        const triFace f = tetFace(tets[pf.id/4], int(pf.id % 4));
+        const triVerts f = tetFace(tets[pf.id/4], int(pf.id % 4));
         int first = 0;
         if (globalPointIds[f[1]] < globalPointIds[f[first]]) first = 1;
         if (globalPointIds[f[2]] < globalPointIds[f[first]]) first = 2;
@@ -378,13 +378,13 @@ void addProcessorPatches
 
 pmsh::tetPolyMesh pmsh::tetsToPolyMesh
 (
-    std::vector<point>&& points,
-    const std::vector<tetCell>& tets,
-    const std::vector<triFace>& boundaryTriangles,
+    std::vector<point3>&& points,
+    const std::vector<tetVerts>& tets,
+    const std::vector<triVerts>& boundaryTriangles,
     const std::vector<label>& boundaryRegion,
     const std::vector<meshPatch>& physicalPatches,
     label myProcNo,
-    const std::vector<globalLabel>& globalPointIds
+    const std::vector<label>& globalPointIds
 )
 {
     checkInput

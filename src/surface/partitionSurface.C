@@ -15,7 +15,7 @@ pmsh::coarsePartSurface pmsh::partitionSurface
     const zoneFaceIndex zoneFaces(coarse);
 
     coarsePartSurface surf;
-    auto add = [&](const triFace& f, label region, label surface, label zone)
+    auto add = [&](const triVerts& f, label region, label surface, label zone)
     {
         surf.faces.push_back(f);
         surf.region.push_back(region);

@@ -22,7 +22,7 @@ pmsh::boundaryEdgeSurfaces::boundaryEdgeSurfaces
     // between zones. A boundary edge away from zones has exactly two
     // faces. Groups come in (p, q) order.
     const matchId nBoundary = matchId(coarse.boundary.size());
-    auto faceOf = [&](matchId face) -> const triFace&
+    auto faceOf = [&](matchId face) -> const triVerts&
     {
         return face < nBoundary
             ? coarse.boundary[face].v : coarse.zoneFaces[face - nBoundary].v;
@@ -35,7 +35,7 @@ pmsh::boundaryEdgeSurfaces::boundaryEdgeSurfaces
     };
     auto edgeOf = [&](matchId id)
     {
-        const triFace& f = faceOf(id/3);
+        const triVerts& f = faceOf(id/3);
         return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
     };
     edges_.reserve(3*coarse.boundary.size()/2);
@@ -72,7 +72,7 @@ pmsh::boundaryEdgeSurfaces::boundaryEdgeSurfaces
             {
                 // The first pair whose curve lies on all the surfaces here
                 // (two of them may be one plane, given twice)
-                const point mid = midPoint(coarse.points[e[0]], coarse.points[e[1]]);
+                const point3 mid = midPoint(coarse.points[e[0]], coarse.points[e[1]]);
                 const double tolerance =
                     1e-6*std::sqrt(magSqr(coarse.points[e[1]] - coarse.points[e[0]]));
                 s1 = s2 = -1;
@@ -80,7 +80,7 @@ pmsh::boundaryEdgeSurfaces::boundaryEdgeSurfaces
                 {
                     for (std::size_t j = i + 1; j < surfaces.size() && s1 < 0; ++j)
                     {
-                        const point q = geometry->projectToEdge(mid, surfaces[i], surfaces[j]);
+                        const point3 q = geometry->projectToEdge(mid, surfaces[i], surfaces[j]);
                         double off = 0;
                         for (label s : surfaces)
                         {
@@ -144,13 +144,13 @@ public:
     {}
 
     int n() const { return n_; }
-    point& at(int i, int j) { return pos_[j*(n_ + 1) + i]; }
-    const std::vector<point>& positions() const { return pos_; }
+    point3& at(int i, int j) { return pos_[j*(n_ + 1) + i]; }
+    const std::vector<point3>& positions() const { return pos_; }
 
     // Fill positions level by level: each new point is the midpoint of the
     // coarser edge it splits, projected through `project(i, j, p)`.
     template<class Projector>
-    void fill(const point& x0, const point& x1, const point& x2, Projector project)
+    void fill(const point3& x0, const point3& x1, const point3& x2, Projector project)
     {
         at(0, 0) = x0;
         at(n_, 0) = x1;
@@ -169,7 +169,7 @@ public:
                     {
                         continue;       // exists at a coarser level
                     }
-                    point mid;
+                    point3 mid;
                     if (oddI && oddJ)
                     {
                         mid = midPoint(at(i + s, j - s), at(i - s, j + s));
@@ -192,7 +192,7 @@ private:
 
     int levels_;
     int n_;
-    std::vector<point> pos_;
+    std::vector<point3> pos_;
 };
 
 
@@ -206,14 +206,14 @@ void fillFace
     const CoarseMesh& coarse,
     const boundaryEdgeSurfaces& edgeSurfaces,
     const Geometry* geometry,
-    const triFace& v,
+    const triVerts& v,
     label faceSurface,
     bool insideOff,
     const EdgeOff& edgeOff
 )
 {
     const int n = lattice.n();
-    auto project = [&](int i, int j, const point& p) -> point
+    auto project = [&](int i, int j, const point3& p) -> point3
     {
         if (!geometry)
         {
@@ -262,15 +262,15 @@ void forEachLatticeTriangle(int n, Triangle f)
 
 //- Refined triangles of a lattice (points v0 < v1 < v2 at `pos`) that
 //  turned against the coarse face (v0, v1, v2).
-label countLatticeFolds(const std::vector<point>& pos, int n)
+label countLatticeFolds(const std::vector<point3>& pos, int n)
 {
-    auto P = [&](int i, int j) -> const point& { return pos[j*(n + 1) + i]; };
-    const vector coarseNormal =
+    auto P = [&](int i, int j) -> const point3& { return pos[j*(n + 1) + i]; };
+    const vector3 coarseNormal =
         cross(P(n, 0) - P(0, 0), P(0, n) - P(0, 0));
     label nFolded = 0;
     forEachLatticeTriangle(n, [&](int i0, int j0, int i1, int j1, int i2, int j2)
     {
-        const point& a = P(i0, j0);
+        const point3& a = P(i0, j0);
         if (dot(cross(P(i1, j1) - a, P(i2, j2) - a), coarseNormal) <= 0)
         {
             ++nFolded;
@@ -281,7 +281,7 @@ label countLatticeFolds(const std::vector<point>& pos, int n)
 
 
 //- The three edges of the face with sorted points v.
-std::array<foldRepair::edgeKey, 3> edgesOf(const triFace& v)
+std::array<foldRepair::edgeKey, 3> edgesOf(const triVerts& v)
 {
     return {{{v[0], v[1]}, {v[1], v[2]}, {v[0], v[2]}}};
 }
@@ -316,7 +316,7 @@ pmsh::foldRepair::foldRepair
     }
     // Every face of every tet that holds a boundary edge: all ranks hold
     // the whole coarse mesh, so all see the same faces around an edge
-    for (const tetCell& t : coarse.tets)
+    for (const tetVerts& t : coarse.tets)
     {
         for (int fi = 0; fi < 4; ++fi)
         {
@@ -347,9 +347,9 @@ pmsh::label pmsh::foldRepair::surfaceOf(const faceKey& f) const
 }
 
 
-std::array<pmsh::triFace, 2> pmsh::foldRepair::boundaryFacesOf(label p, label q) const
+std::array<pmsh::triVerts, 2> pmsh::foldRepair::boundaryFacesOf(label p, label q) const
 {
-    std::array<triFace, 2> faces{};
+    std::array<triVerts, 2> faces{};
     int nFound = 0;
     const auto it = facesAround_.find(sortedEdge(p, q));
     if (it != facesAround_.end())
@@ -503,18 +503,18 @@ bool pmsh::foldRepair::foldsAcross(const edgeKey& e, int round) const
     // The outward unit normal of the fine triangle at segment m of the
     // edge (counted from e[0]) in each boundary face, and of the coarse face
     const int n = 1 << levels_;
-    std::array<std::vector<vector>, 2> normals;
-    std::array<vector, 2> coarseNormal;
-    const std::array<triFace, 2> faces = boundaryFacesOf(e[0], e[1]);
-    auto unit = [](const vector& v, bool flip)
+    std::array<std::vector<vector3>, 2> normals;
+    std::array<vector3, 2> coarseNormal;
+    const std::array<triVerts, 2> faces = boundaryFacesOf(e[0], e[1]);
+    auto unit = [](const vector3& v, bool flip)
     {
         return (flip ? -1.0 : 1.0)/std::sqrt(magSqr(v))*v;
     };
     for (int side = 0; side < 2; ++side)
     {
         const faceKey& v = faces[side];
-        const std::vector<point> pos = refinedFace(v, round - 1);
-        auto P = [&](int i, int j) -> const point& { return pos[j*(n + 1) + i]; };
+        const std::vector<point3> pos = refinedFace(v, round - 1);
+        auto P = [&](int i, int j) -> const point3& { return pos[j*(n + 1) + i]; };
         const bool flip = boundarySurface_.at(v).second;
         coarseNormal[side] = unit(cross(P(n, 0) - P(0, 0), P(0, n) - P(0, 0)), flip);
         for (int m = 0; m < n; ++m)
@@ -546,7 +546,7 @@ bool pmsh::foldRepair::foldsAcross(const edgeKey& e, int round) const
 }
 
 
-std::vector<pmsh::point> pmsh::foldRepair::refinedFace(const faceKey& v, int round) const
+std::vector<pmsh::point3> pmsh::foldRepair::refinedFace(const faceKey& v, int round) const
 {
     faceLattice lattice(levels_);
     fillFace
@@ -559,7 +559,7 @@ std::vector<pmsh::point> pmsh::foldRepair::refinedFace(const faceKey& v, int rou
 }
 
 
-std::vector<pmsh::point> pmsh::foldRepair::refinedFace(const triFace& f) const
+std::vector<pmsh::point3> pmsh::foldRepair::refinedFace(const triVerts& f) const
 {
     return refinedFace(sortedFace(f), rounds);
 }
@@ -603,7 +603,7 @@ pmsh::FineSurface pmsh::refineSurface
     sharedPoints.reserve(nCoarseFaces*(3*n/2 + 1));
     // A face between two zones of the part comes twice: the second time
     // it takes the first one's points
-    std::map<triFace, std::vector<label>> betweenZonesPoints;
+    std::map<triVerts, std::vector<label>> betweenZonesPoints;
 
     faceLattice lattice(levels);
     std::vector<label> latticePoint((n + 1)*(n + 1));
@@ -618,23 +618,23 @@ pmsh::FineSurface pmsh::refineSurface
     // it: points inside a boundary face by the part holding the face,
     // points on a boundary edge by the part holding the edge's lower
     // boundary face (so every point counts once over all parts)
-    auto distanceOff = [&](const point& p, label s1, label s2)
+    auto distanceOff = [&](const point3& p, label s1, label s2)
     {
         const double d1 = magSqr(p - geometry->projectToSurface(p, s1));
         const double d2 =
             s2 == s1 ? d1 : magSqr(p - geometry->projectToSurface(p, s2));
         return std::sqrt(std::min(d1, d2));
     };
-    auto countOff = [&](const point& p, label s1, label s2)
+    auto countOff = [&](const point3& p, label s1, label s2)
     {
         const double d = distanceOff(p, s1, s2);
         ++fine.repair.nPointsOff;
         fine.repair.sumDistance += d;
         fine.repair.maxDistance = std::max(fine.repair.maxDistance, d);
     };
-    auto addRepairStats = [&](const triFace& v, label faceSurface, const std::vector<point>& pos)
+    auto addRepairStats = [&](const triVerts& v, label faceSurface, const std::vector<point3>& pos)
     {
-        auto P = [&](int i, int j) -> const point& { return pos[j*(n + 1) + i]; };
+        auto P = [&](int i, int j) -> const point3& { return pos[j*(n + 1) + i]; };
         if (repair->faceUnprojected(v))
         {
             for (int j = 1; j < n; ++j)
@@ -668,9 +668,9 @@ pmsh::FineSurface pmsh::refineSurface
     };
 
     // The points of the face with sorted points v, into latticePoint
-    auto makeFacePoints = [&](const triFace& v, label faceSurface)
+    auto makeFacePoints = [&](const triVerts& v, label faceSurface)
     {
-        std::vector<point> positions;
+        std::vector<point3> positions;
         if (repair)
         {
             positions = repair->refinedFace(v);
@@ -718,8 +718,8 @@ pmsh::FineSurface pmsh::refineSurface
 
     for (label facei = 0; facei < nCoarseFaces; ++facei)
     {
-        const triFace& f = partSurface.faces[facei];
-        triFace v = f;
+        const triVerts& f = partSurface.faces[facei];
+        triVerts v = f;
         std::sort(v.begin(), v.end());
         if (!isBetweenZones(partSurface.region[facei]))
         {
@@ -746,7 +746,7 @@ pmsh::FineSurface pmsh::refineSurface
         forEachLatticeTriangle(n, [&](int i0, int j0, int i1, int j1, int i2, int j2)
         {
             const label a = P(i0, j0), b = P(i1, j1), c = P(i2, j2);
-            fine.triangles.push_back(flip ? triFace{a, c, b} : triFace{a, b, c});
+            fine.triangles.push_back(flip ? triVerts{a, c, b} : triVerts{a, b, c});
             fine.region.push_back(partSurface.region[facei]);
             if (!partSurface.zone.empty())
             {
@@ -770,16 +770,16 @@ pmsh::label pmsh::countFoldedTriangles
     label nFolded = 0;
     for (std::size_t facei = 0; facei < partSurface.faces.size(); ++facei)
     {
-        const triFace& f = partSurface.faces[facei];
-        const vector coarseNormal = cross
+        const triVerts& f = partSurface.faces[facei];
+        const vector3 coarseNormal = cross
         (
             coarse.points[f[1]] - coarse.points[f[0]],
             coarse.points[f[2]] - coarse.points[f[0]]
         );
         for (std::size_t t = 0; t < trianglesPerFace; ++t)
         {
-            const triFace& tri = fine.triangles[facei*trianglesPerFace + t];
-            const vector normal = cross
+            const triVerts& tri = fine.triangles[facei*trianglesPerFace + t];
+            const vector3 normal = cross
             (
                 fine.points[tri[1]] - fine.points[tri[0]],
                 fine.points[tri[2]] - fine.points[tri[0]]
@@ -816,18 +816,18 @@ pmsh::FineSurface pmsh::refinePartSurface
         std::string where;
         for (std::size_t facei = 0; facei < partSurface.faces.size() && where.empty(); ++facei)
         {
-            const triFace& f = partSurface.faces[facei];
-            const vector coarseNormal = cross
+            const triVerts& f = partSurface.faces[facei];
+            const vector3 coarseNormal = cross
             (
                 coarse.points[f[1]] - coarse.points[f[0]],
                 coarse.points[f[2]] - coarse.points[f[0]]
             );
             for (std::size_t t = 0; t < trianglesPerFace && where.empty(); ++t)
             {
-                const triFace& tri = fine.triangles[facei*trianglesPerFace + t];
-                const point& a = fine.points[tri[0]];
-                const point& b = fine.points[tri[1]];
-                const point& c = fine.points[tri[2]];
+                const triVerts& tri = fine.triangles[facei*trianglesPerFace + t];
+                const point3& a = fine.points[tri[0]];
+                const point3& b = fine.points[tri[1]];
+                const point3& c = fine.points[tri[2]];
                 if (dot(cross(b - a, c - a), coarseNormal) <= 0)
                 {
                     const label region = partSurface.region[facei];

@@ -27,8 +27,8 @@ const char* const function = "pmsh::VolumeMesher::mesh";
 //  using every point: what every backend needs (Netgen may crash on less).
 void checkClosedSurface
 (
-    const std::vector<point>& points,
-    const std::vector<triFace>& triangles,
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles,
     const std::string& what
 )
 {
@@ -58,7 +58,7 @@ void checkClosedSurface
     }
     for (std::size_t t = 0; t < triangles.size(); ++t)
     {
-        const triFace& f = triangles[t];
+        const triVerts& f = triangles[t];
         if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2])
         {
             throw FatalError
@@ -104,7 +104,7 @@ void checkClosedSurface
 
     // Outward: positive enclosed volume (about a point of the surface)
     double v6 = 0;
-    for (const triFace& f : triangles)
+    for (const triVerts& f : triangles)
     {
         v6 += tetVolume6(points[0], points[f[0]], points[f[1]], points[f[2]]);
     }
@@ -126,8 +126,8 @@ void checkClosedSurface
 //  VolumeMesher.H.
 void verifyVolumeMesh
 (
-    const std::vector<point>& surfacePoints,
-    const std::vector<triFace>& surfaceTriangles,
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
     const TetMesh& result,
     const std::string& what
 )
@@ -153,7 +153,7 @@ void verifyVolumeMesh
     }
     for (label i = 0; i < nSurface; ++i)
     {
-        if (std::memcmp(result.points[i].data(), surfacePoints[i].data(), sizeof(point)) != 0)
+        if (std::memcmp(result.points[i].data(), surfacePoints[i].data(), sizeof(point3)) != 0)
         {
             throw FatalError
             (
@@ -168,7 +168,7 @@ void verifyVolumeMesh
     // Positive tets
     for (std::size_t t = 0; t < result.tets.size(); ++t)
     {
-        const tetCell& c = result.tets[t];
+        const tetVerts& c = result.tets[t];
         for (label p : c)
         {
             if (p < 0 || p >= np)
@@ -293,8 +293,8 @@ std::vector<std::unique_ptr<pmsh::VolumeMesher>> pmsh::VolumeMesher::NewAll
 
 pmsh::TetMesh pmsh::VolumeMesher::mesh
 (
-    const std::vector<point>& surfacePoints,
-    const std::vector<triFace>& surfaceTriangles,
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
     const volumeMeshParameters& parameters
 ) const
 {

@@ -106,8 +106,8 @@ int regionSizeFields
             {
                 // Gmsh's cylinder is Center +- Axis: the half axis from
                 // the midpoint
-                const point mid = midPoint(r.point1, r.point2);
-                const vector half = 0.5*(r.point2 - r.point1);
+                const point3 mid = midPoint(r.point1, r.point2);
+                const vector3 half = 0.5*(r.point2 - r.point1);
                 f = field::add("Cylinder");
                 field::setNumber(f, "XCenter", mid[0]);
                 field::setNumber(f, "YCenter", mid[1]);
@@ -140,8 +140,8 @@ int regionSizeFields
 
 pmsh::TetMesh pmsh::hxtVolumeMesher::generate
 (
-    const std::vector<point>& surfacePoints,
-    const std::vector<triFace>& surfaceTriangles,
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
     const volumeMeshParameters& parameters
 ) const
 {
@@ -214,7 +214,7 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
             double volume6 = 0;
             for (label i : shells[s])
             {
-                const triFace& t = surfaceTriangles[i];
+                const triVerts& t = surfaceTriangles[i];
                 volume6 += dot(surfacePoints[t[0]], cross(surfacePoints[t[1]], surfacePoints[t[2]]));
             }
             if (volume6 > 0)
@@ -232,7 +232,7 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         {
             const bool outer = std::find(outers.begin(), outers.end(), s) != outers.end();
             if (outer || outers.empty()) continue;
-            const point& p = surfacePoints[surfaceTriangles[shells[s][0]][0]];
+            const point3& p = surfacePoints[surfaceTriangles[shells[s][0]][0]];
             std::size_t owner = outers.size();
             for (std::size_t o = 0; o < outers.size(); ++o)
             {
@@ -344,7 +344,7 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         result.tets.resize(elementNodes.size()/4);
         for (std::size_t e = 0; e < result.tets.size(); ++e)
         {
-            tetCell& t = result.tets[e];
+            tetVerts& t = result.tets[e];
             for (int k = 0; k < 4; ++k)
             {
                 const std::size_t tag = elementNodes[4*e + k];

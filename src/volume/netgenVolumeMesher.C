@@ -10,8 +10,8 @@
 
 pmsh::TetMesh pmsh::netgenVolumeMesher::generate
 (
-    const std::vector<point>& surfacePoints,
-    const std::vector<triFace>& surfaceTriangles,
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
     const volumeMeshParameters& parameters
 ) const
 {

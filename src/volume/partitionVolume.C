@@ -28,8 +28,8 @@ void pmsh::writeSurfaceStl
 (
     const std::string& fileName,
     const std::string& solidName,
-    const std::vector<point>& points,
-    const std::vector<triFace>& triangles
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles
 )
 {
     const std::filesystem::path path(fileName);
@@ -39,9 +39,9 @@ void pmsh::writeSurfaceStl
     }
     std::ofstream os(fileName);
     os  << std::setprecision(17) << "solid " << solidName << '\n';
-    for (const triFace& t : triangles)
+    for (const triVerts& t : triangles)
     {
-        const vector n = cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]);
+        const vector3 n = cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]);
         const double mag = std::sqrt(magSqr(n));
         const double s = mag > 0 ? 1/mag : 0;
         os  << "  facet normal " << s*n[0] << ' ' << s*n[1] << ' ' << s*n[2] << '\n'
@@ -60,8 +60,8 @@ void pmsh::writeSurfaceStl
 pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
 (
     const std::vector<std::unique_ptr<VolumeMesher>>& meshers,
-    const std::vector<point>& surfacePoints,
-    const std::vector<triFace>& surfaceTriangles,
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
     const volumeMeshParameters& parameters,
     const std::string& failedSurfaceFile,
     const std::string& advice
@@ -152,8 +152,8 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
 pmsh::partitionVolumeResult pmsh::meshVolumeByZone
 (
     const std::vector<std::unique_ptr<VolumeMesher>>& meshers,
-    const std::vector<point>& surfacePoints,
-    const std::vector<triFace>& surfaceTriangles,
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
     const std::vector<label>& triangleZone,
     const std::vector<std::string>& zoneNames,
     const volumeMeshParameters& parameters,
@@ -180,7 +180,7 @@ pmsh::partitionVolumeResult pmsh::meshVolumeByZone
         // The zone's triangles, its points renumbered in their order (so
         // the local surface points keep the global order)
         std::vector<label> local(surfacePoints.size(), -1);
-        std::vector<triFace> triangles;
+        std::vector<triVerts> triangles;
         volumeMeshParameters p = parameters;
         p.interfaceTriangles.clear();
         for (std::size_t t = 0; t < surfaceTriangles.size(); ++t)
@@ -203,7 +203,7 @@ pmsh::partitionVolumeResult pmsh::meshVolumeByZone
             continue;
         }
         std::vector<label> global;
-        std::vector<point> points;
+        std::vector<point3> points;
         for (std::size_t v = 0; v < local.size(); ++v)
         {
             if (local[v] == 0)
@@ -213,7 +213,7 @@ pmsh::partitionVolumeResult pmsh::meshVolumeByZone
                 points.push_back(surfacePoints[v]);
             }
         }
-        for (triFace& t : triangles)
+        for (triVerts& t : triangles)
         {
             for (label& v : t)
             {
@@ -237,7 +237,7 @@ pmsh::partitionVolumeResult pmsh::meshVolumeByZone
             global.push_back(label(joined.mesh.points.size()));
             joined.mesh.points.push_back(part.mesh.points[v]);
         }
-        for (const tetCell& t : part.mesh.tets)
+        for (const tetVerts& t : part.mesh.tets)
         {
             joined.mesh.tets.push_back
             ({global[t[0]], global[t[1]], global[t[2]], global[t[3]]});

@@ -36,8 +36,8 @@ struct measure
 
 double skewnessOf
 (
-    const vector& sv, double base,
-    const point& a, const point& b, const point& c, const point& centre
+    const vector3& sv, double base,
+    const point3& a, const point3& b, const point3& c, const point3& centre
 )
 {
     const double m = std::sqrt(magSqr(sv));
@@ -45,9 +45,9 @@ double skewnessOf
     {
         return 0;
     }
-    const vector hat = (1/m)*sv;
+    const vector3 hat = (1/m)*sv;
     double fd = base;
-    for (const point* p : {&a, &b, &c})
+    for (const point3* p : {&a, &b, &c})
     {
         fd = std::max(fd, std::abs(dot(hat, *p - centre)));
     }
@@ -59,19 +59,19 @@ double skewnessOf
 // centre of a tet is the mean of its points (as OpenFOAM's for a tet).
 measure internalMeasure
 (
-    const point& a, const point& b, const point& c, const point& d, const point& e
+    const point3& a, const point3& b, const point3& c, const point3& d, const point3& e
 )
 {
-    const point centre = (1.0/3.0)*(a + b + c);
-    const vector area = cross(b - a, c - a);
-    const vector D = 0.25*(e - d);          // cell centre to cell centre
+    const point3 centre = (1.0/3.0)*(a + b + c);
+    const vector3 area = cross(b - a, c - a);
+    const vector3 D = 0.25*(e - d);          // cell centre to cell centre
     const double DA = dot(D, area);
     if (!(DA*DA > 0))
     {
         return {infinite, infinite};
     }
-    const vector Cpf = 0.25*(centre - d);   // cell centre to face centre
-    const vector sv = Cpf - (dot(area, Cpf)/DA)*D;
+    const vector3 Cpf = 0.25*(centre - d);   // cell centre to face centre
+    const vector3 sv = Cpf - (dot(area, Cpf)/DA)*D;
     return
     {
         magSqr(cross(D, area))/(DA*DA),
@@ -84,20 +84,20 @@ measure internalMeasure
 // face centre to the cell centre
 measure boundaryMeasure
 (
-    const point& a, const point& b, const point& c, const point& d
+    const point3& a, const point3& b, const point3& c, const point3& d
 )
 {
-    const point centre = (1.0/3.0)*(a + b + c);
-    const vector area = cross(b - a, c - a);
+    const point3 centre = (1.0/3.0)*(a + b + c);
+    const vector3 area = cross(b - a, c - a);
     const double A2 = magSqr(area);
-    const vector Cpf = 0.25*(centre - d);
+    const vector3 Cpf = 0.25*(centre - d);
     const double normal = dot(area, Cpf);
     if (!(normal*normal > 0))
     {
         return {infinite, infinite};
     }
-    const vector dn = (normal/A2)*area;
-    const vector sv = Cpf - dn;
+    const vector3 dn = (normal/A2)*area;
+    const vector3 sv = Cpf - dn;
     const double dn2 = magSqr(dn);
     return {magSqr(sv)/dn2, skewnessOf(sv, 0.4*std::sqrt(dn2), a, b, c, centre)};
 }
@@ -122,10 +122,10 @@ constexpr double sliverVolume = 5e-2;
 
 inline double sqr(double x) { return x*x; }
 
-double sliverBadness(const point& a, const point& b, const point& c, const point& d)
+double sliverBadness(const point3& a, const point3& b, const point3& c, const point3& d)
 {
     double longest2 = 0;
-    const point* p[4] = {&a, &b, &c, &d};
+    const point3* p[4] = {&a, &b, &c, &d};
     for (int i = 0; i < 4; ++i)
     {
         for (int j = i + 1; j < 4; ++j)
@@ -174,12 +174,12 @@ bool better(std::vector<double>& b, std::vector<double>& a)
 //  next rebuild.
 class passMesh
 {
-    std::vector<point>& points_;
-    std::vector<tetCell>& tets_;
+    std::vector<point3>& points_;
+    std::vector<tetVerts>& tets_;
     const label nFixed_;
 
     // Boundary triangles of each surface point (CSR), and their kind
-    const std::vector<triFace>& triangles_;
+    const std::vector<triVerts>& triangles_;
     std::vector<label> triStart_;
     std::vector<label> pointTris_;
     std::vector<label> kind_;
@@ -199,7 +199,7 @@ public:
     (
         TetMesh& mesh,
         label nFixed,
-        const std::vector<triFace>& triangles,
+        const std::vector<triVerts>& triangles,
         const std::vector<char>& interface
     )
     :
@@ -211,7 +211,7 @@ public:
         pointTris_(3*triangles.size()),
         kind_(triangles.size(), physicalBoundary)
     {
-        for (const triFace& f : triangles)
+        for (const triVerts& f : triangles)
         {
             for (label p : f) ++triStart_[p + 1];
         }
@@ -231,12 +231,12 @@ public:
         (
             std::remove_if
             (
-                tets_.begin(), tets_.end(), [](const tetCell& c) { return c[0] < 0; }
+                tets_.begin(), tets_.end(), [](const tetVerts& c) { return c[0] < 0; }
             ),
             tets_.end()
         );
         start_.assign(points_.size() + 1, 0);
-        for (const tetCell& c : tets_)
+        for (const tetVerts& c : tets_)
         {
             for (label p : c) ++start_[p + 1];
         }
@@ -252,7 +252,7 @@ public:
         {
             for (int k = 0; k < 4; ++k)
             {
-                const triFace f = tetFace(tets_[t], k);
+                const triVerts f = tetFace(tets_[t], k);
                 const label u = findTet(t, f);
                 across_[4*t + k] = u >= 0 ? u : boundaryKind(f);
             }
@@ -266,7 +266,7 @@ public:
     {
         const label u = across_[4*t + k];
         if (u >= 0 && u < t) return -1;
-        return badnessOf(tets_[t], k, u, [&](label q) -> const point& { return points_[q]; });
+        return badnessOf(tets_[t], k, u, [&](label q) -> const point3& { return points_[q]; });
     }
 
     faceQuality worstFaces() const
@@ -280,7 +280,7 @@ public:
                 if (u >= 0 && u < t) continue;
                 const measure m = measureOf
                 (
-                    tets_[t], k, u, [&](label q) -> const point& { return points_[q]; }
+                    tets_[t], k, u, [&](label q) -> const point3& { return points_[q]; }
                 );
                 if (u != physicalBoundary) tan2 = std::max(tan2, m.tan2);
                 skew = std::max(skew, m.skew);
@@ -294,7 +294,7 @@ public:
     //- How much of a sliver tet t is (0: none).
     double sliver(label t) const
     {
-        const tetCell& c = tets_[t];
+        const tetVerts& c = tets_[t];
         return sliverBadness(points_[c[0]], points_[c[1]], points_[c[2]], points_[c[3]]);
     }
 
@@ -311,7 +311,7 @@ public:
         ++nVisited;
         if (!flip(t))
         {
-            const tetCell c = tets_[t];
+            const tetVerts c = tets_[t];
             for (label p : c)
             {
                 if (p >= nFixed_ && !locked_[p])
@@ -326,12 +326,12 @@ private:
 
     bool has(label t, label p) const
     {
-        const tetCell& c = tets_[t];
+        const tetVerts& c = tets_[t];
         return c[0] == p || c[1] == p || c[2] == p || c[3] == p;
     }
 
     //- The tet other than t with the points of f; -1 if none.
-    label findTet(label t, const triFace& f) const
+    label findTet(label t, const triVerts& f) const
     {
         for (label i = start_[f[0]]; i < start_[f[0] + 1]; ++i)
         {
@@ -345,13 +345,13 @@ private:
     }
 
     //- Processor or physical boundary, for a face on no other tet.
-    label boundaryKind(const triFace& f) const
+    label boundaryKind(const triVerts& f) const
     {
         if (f[0] < nFixed_)
         {
             for (label i = triStart_[f[0]]; i < triStart_[f[0] + 1]; ++i)
             {
-                const triFace& g = triangles_[pointTris_[i]];
+                const triVerts& g = triangles_[pointTris_[i]];
                 const auto in = [&](label p) { return g[0] == p || g[1] == p || g[2] == p; };
                 if (in(f[1]) && in(f[2])) return kind_[pointTris_[i]];
             }
@@ -360,7 +360,7 @@ private:
     }
 
     //- The point of tet u that is not on face f.
-    label apexOf(label u, const triFace& f) const
+    label apexOf(label u, const triVerts& f) const
     {
         for (label q : tets_[u])
         {
@@ -371,10 +371,10 @@ private:
 
     //- Measures of face k of tet c, with `u` across it, points from pos.
     template<class Pos>
-    measure measureOf(const tetCell& c, int k, label u, const Pos& pos) const
+    measure measureOf(const tetVerts& c, int k, label u, const Pos& pos) const
     {
-        const triFace f = tetFace(c, k);
-        const point& d = pos(c[3 - k]);
+        const triVerts f = tetFace(c, k);
+        const point3& d = pos(c[3 - k]);
         if (u >= 0)
         {
             return internalMeasure(pos(f[0]), pos(f[1]), pos(f[2]), d, pos(apexOf(u, f)));
@@ -383,7 +383,7 @@ private:
     }
 
     template<class Pos>
-    double badnessOf(const tetCell& c, int k, label u, const Pos& pos) const
+    double badnessOf(const tetVerts& c, int k, label u, const Pos& pos) const
     {
         return badness(measureOf(c, k, u, pos), u != physicalBoundary);
     }
@@ -396,7 +396,7 @@ private:
     template<class Pos>
     double faceBadnessIn
     (
-        const std::vector<tetCell>& set,
+        const std::vector<tetVerts>& set,
         const std::vector<std::array<label, 4>>& acrossOf,
         const std::vector<std::array<label, 4>>& inSet,
         std::size_t i, int k,
@@ -408,7 +408,7 @@ private:
         {
             return badnessOf(set[i], k, acrossOf[i][k], pos);
         }
-        const triFace f = tetFace(set[i], k);
+        const triVerts f = tetFace(set[i], k);
         label e = -1;
         for (label q : set[j])
         {
@@ -426,7 +426,7 @@ private:
     template<class Pos>
     std::vector<double> setBadness
     (
-        const std::vector<tetCell>& set,
+        const std::vector<tetVerts>& set,
         const std::vector<std::array<label, 4>>& acrossOf,
         const std::vector<std::array<label, 4>>& inSet,
         const Pos& pos
@@ -436,7 +436,7 @@ private:
         b.reserve(4*set.size());
         for (std::size_t i = 0; i < set.size(); ++i)
         {
-            const tetCell& c = set[i];
+            const tetVerts& c = set[i];
             const double sliver = sliverBadness(pos(c[0]), pos(c[1]), pos(c[2]), pos(c[3]));
             if (sliver > 0)
             {
@@ -458,24 +458,24 @@ private:
     //  (acrossOf). False if a face matches neither.
     bool addressSet
     (
-        const std::vector<tetCell>& set,
+        const std::vector<tetVerts>& set,
         const std::vector<label>& old,
         std::vector<std::array<label, 4>>& acrossOf,
         std::vector<std::array<label, 4>>& inSet
     ) const
     {
-        const auto sorted = [](triFace f)
+        const auto sorted = [](triVerts f)
         {
             std::sort(f.begin(), f.end());
             return f;
         };
-        std::vector<std::array<triFace, 4>> faces(set.size());
+        std::vector<std::array<triVerts, 4>> faces(set.size());
         for (std::size_t i = 0; i < set.size(); ++i)
         {
             for (int k = 0; k < 4; ++k) faces[i][k] = sorted(tetFace(set[i], k));
         }
         // The faces of the old tets towards the rest of the mesh
-        std::vector<std::pair<triFace, label>> outer;
+        std::vector<std::pair<triVerts, label>> outer;
         for (label t : old)
         {
             for (int k = 0; k < 4; ++k)
@@ -493,7 +493,7 @@ private:
         {
             for (int k = 0; k < 4; ++k)
             {
-                const triFace& f = faces[i][k];
+                const triVerts& f = faces[i][k];
                 bool found = false;
                 for (std::size_t j = 0; j < set.size() && !found; ++j)
                 {
@@ -522,14 +522,14 @@ private:
     }
 
     //- Replace tets `old` by `created`, locking every point involved.
-    void replace(const std::vector<label>& old, const std::vector<tetCell>& created)
+    void replace(const std::vector<label>& old, const std::vector<tetVerts>& created)
     {
         for (label t : old)
         {
             for (label p : tets_[t]) locked_[p] = 1;
             tets_[t][0] = -1;
         }
-        for (const tetCell& c : created) tets_.push_back(c);
+        for (const tetVerts& c : created) tets_.push_back(c);
         ++nFlips;
     }
 
@@ -560,12 +560,12 @@ private:
     bool improves
     (
         const std::vector<label>& old,
-        const std::vector<tetCell>& created,
+        const std::vector<tetVerts>& created,
         std::vector<double>& createdBadness
     ) const
     {
-        const auto pos = [&](label q) -> const point& { return points_[q]; };
-        std::vector<tetCell> oldSet;
+        const auto pos = [&](label q) -> const point3& { return points_[q]; };
+        std::vector<tetVerts> oldSet;
         for (label t : old) oldSet.push_back(tets_[t]);
         std::vector<std::array<label, 4>> acrossOf, inSet;
         if (!addressSet(oldSet, old, acrossOf, inSet)) return false;
@@ -652,16 +652,16 @@ private:
     //  its faces better; false if there is none.
     bool flip(label t)
     {
-        const tetCell c = tets_[t];
+        const tetVerts c = tets_[t];
         for (label p : c)
         {
             if (locked_[p]) return false;
         }
 
         std::vector<label> bestOld;
-        std::vector<tetCell> bestNew;
+        std::vector<tetVerts> bestNew;
         std::vector<double> bestBadness;
-        const auto consider = [&](const std::vector<label>& old, const std::vector<tetCell>& created)
+        const auto consider = [&](const std::vector<label>& old, const std::vector<tetVerts>& created)
         {
             for (label u : old)
             {
@@ -685,7 +685,7 @@ private:
             const label u = across_[4*t + 3 - i];
             if (u < 0) continue;
             const label d = c[i];
-            const triFace f = tetFace(c, 3 - i);
+            const triVerts f = tetFace(c, 3 - i);
             const label e = apexOf(u, f);
             consider
             (
@@ -720,7 +720,7 @@ private:
             if (polygon.empty()) continue;
             for (const auto& triangles : triangulations(0, label(polygon.size()) - 1))
             {
-                std::vector<tetCell> created;
+                std::vector<tetVerts> created;
                 for (const auto& t : triangles)
                 {
                     const label x = polygon[t[0]], y = polygon[t[1]], z = polygon[t[2]];
@@ -757,7 +757,7 @@ private:
         {
             if (!current(t)) return;
         }
-        std::vector<tetCell> set;
+        std::vector<tetVerts> set;
         std::vector<std::array<label, 4>> acrossOf(star.size()), inSet(star.size());
         for (std::size_t i = 0; i < star.size(); ++i)
         {
@@ -771,20 +771,20 @@ private:
             }
         }
 
-        point x = points_[p];
-        const auto at = [&](const point& y)
+        point3 x = points_[p];
+        const auto at = [&](const point3& y)
         {
             return setBadness
             (
                 set, acrossOf, inSet,
-                [&](label q) -> const point& { return q == p ? y : points_[q]; }
+                [&](label q) -> const point3& { return q == p ? y : points_[q]; }
             );
         };
 
-        point centre{0, 0, 0};
+        point3 centre{0, 0, 0};
         double length = 0;
         label n = 0;
-        for (const tetCell& c : set)
+        for (const tetVerts& c : set)
         {
             for (label q : c)
             {
@@ -818,7 +818,7 @@ private:
             label worstTet = -1;
             int worstFace = -1;
             double b0 = -1;
-            const auto pos = [&](label q) -> const point& { return q == p ? x : points_[q]; };
+            const auto pos = [&](label q) -> const point3& { return q == p ? x : points_[q]; };
             for (std::size_t i = 0; i < set.size(); ++i)
             {
                 for (int k = 0; k < 4; ++k)
@@ -834,28 +834,28 @@ private:
                 }
             }
             if (!std::isfinite(b0)) break;
-            vector g;
+            vector3 g;
             for (int k = 0; k < 3; ++k)
             {
-                point y = x;
+                point3 y = x;
                 y[k] += h;
                 g[k] =
                 (
                     faceBadnessIn
                     (
                         set, acrossOf, inSet, worstTet, worstFace,
-                        [&](label q) -> const point& { return q == p ? y : points_[q]; }
+                        [&](label q) -> const point3& { return q == p ? y : points_[q]; }
                     )
                   - b0
                 )/h;
             }
             const double gMag = std::sqrt(magSqr(g));
             if (!(gMag > 0) || !std::isfinite(gMag)) break;
-            const vector dir = (-length/gMag)*g;
+            const vector3 dir = (-length/gMag)*g;
             bool improved = false;
             for (double step : {0.1, 0.03, 0.01, 0.003})
             {
-                const point y = x + step*dir;
+                const point3 y = x + step*dir;
                 std::vector<double> b = at(y);
                 if (better(b, current))
                 {
@@ -883,8 +883,8 @@ private:
 
 pmsh::faceQuality pmsh::internalFaceQuality
 (
-    const point& a, const point& b, const point& c,
-    const point& d, const point& e
+    const point3& a, const point3& b, const point3& c,
+    const point3& d, const point3& e
 )
 {
     const measure m = internalMeasure(a, b, c, d, e);
@@ -894,7 +894,7 @@ pmsh::faceQuality pmsh::internalFaceQuality
 
 pmsh::faceQuality pmsh::boundaryFaceQuality
 (
-    const point& a, const point& b, const point& c, const point& d
+    const point3& a, const point3& b, const point3& c, const point3& d
 )
 {
     const measure m = boundaryMeasure(a, b, c, d);
@@ -906,7 +906,7 @@ pmsh::qualityPassStats pmsh::improveWorstCells
 (
     TetMesh& mesh,
     const label nFixedPoints,
-    const std::vector<triFace>& triangles,
+    const std::vector<triVerts>& triangles,
     const std::vector<char>& interface,
     const int steps
 )

@@ -7,20 +7,20 @@
 
 double pmsh::tetAspectRatio
 (
-    const point& a, const point& b, const point& c, const point& d
+    const point3& a, const point3& b, const point3& c, const point3& d
 )
 {
     // Face area vectors, magnitudes summed component by component as
     // cellClosedness does (the orientation does not matter for them)
-    const std::array<vector, 4> area =
+    const std::array<vector3, 4> area =
     {
         0.5*cross(c - a, b - a),
         0.5*cross(b - a, d - a),
         0.5*cross(d - a, c - a),
         0.5*cross(c - b, d - b)
     };
-    vector sumMag{0, 0, 0};
-    for (const vector& s : area)
+    vector3 sumMag{0, 0, 0};
+    for (const vector3& s : area)
     {
         for (int k = 0; k < 3; ++k)
         {
@@ -51,13 +51,13 @@ pmsh::tetShapeRange pmsh::tetShapeRangeOf(const TetMesh& mesh)
     // cosines of the normals' angles, one acos each at the end
     double minCos = 1, maxCos = -1;
     double maxAspectRatio = 0;
-    for (const tetCell& c : mesh.tets)
+    for (const tetVerts& c : mesh.tets)
     {
-        std::array<vector, 4> n;
+        std::array<vector3, 4> n;
         for (int k = 0; k < 4; ++k)
         {
-            const triFace f = tetFace(c, k);
-            const point& a = mesh.points[f[0]];
+            const triVerts f = tetFace(c, k);
+            const point3& a = mesh.points[f[0]];
             n[k] = cross(mesh.points[f[1]] - a, mesh.points[f[2]] - a);
             const double m = std::sqrt(magSqr(n[k]));
             n[k] = (m > 0 ? 1/m : 0)*n[k];

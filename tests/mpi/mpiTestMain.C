@@ -1,4 +1,5 @@
 #include "mpiTestMain.H"
+#include "foamShims.H"
 
 #include "UPstream.H"
 
@@ -30,7 +31,7 @@ int main(int argc, char** argv)
     }
     else
     {
-        Foam::UPstream::initNull();
+        pmsh::foam::initNullMPI();
     }
     const pmsh::Communicator comm;
     theWorld = &comm;
@@ -50,6 +51,7 @@ int main(int argc, char** argv)
     {
         std::cout << "Some rank failed a test" << std::endl;
     }
+    pmsh::foam::endNullMPI();
     Foam::UPstream::exit(anyFailed ? 1 : 0);
     return 1;
 }

@@ -67,7 +67,7 @@ rankTets unevenShare(const CoarseMesh& cube, std::vector<int>& owner)
     for (label t = 0; t < nTets; ++t)
     {
         if (owner[t] != comm.rank()) continue;
-        const tetCell& c = cube.tets[t];
+        const tetVerts& c = cube.tets[t];
         mine.tets.push_back({pointOf(c[0]), pointOf(c[1]), pointOf(c[2]), pointOf(c[3])});
         const auto faces = outwardTetFaces(mine.tets.back());
         for (int f = 0; f < 4; ++f)
@@ -110,18 +110,18 @@ TEST(parallelFineBalance, unevenRanksEndWithinOnePercentEveryTetOnceAndTheFacesA
     EXPECT_NEAR(*std::max_element(counts.begin(), counts.end())/(total/comm.size()), stats.after, 1e-12);
 
     // Every tet of the cube on exactly one rank, by its global points
-    std::map<std::array<globalLabel, 4>, label> tetIndex;
+    std::map<std::array<label, 4>, label> tetIndex;
     for (label t = 0; t < cube.nCells(); ++t)
     {
-        std::array<globalLabel, 4> k;
+        std::array<label, 4> k;
         for (int i = 0; i < 4; ++i) k[i] = cube.tets[t][i];
         std::sort(k.begin(), k.end());
         tetIndex[k] = t;
     }
     std::vector<int> held(cube.nCells(), 0);
-    for (const tetCell& t : mine.tets)
+    for (const tetVerts& t : mine.tets)
     {
-        std::array<globalLabel, 4> k;
+        std::array<label, 4> k;
         for (int i = 0; i < 4; ++i) k[i] = mine.globalIds[t[i]];
         std::sort(k.begin(), k.end());
         ASSERT_TRUE(tetIndex.count(k)) << "a tet that is not the cube's";

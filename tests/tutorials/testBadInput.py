@@ -337,11 +337,15 @@ class cases:
         return c, ["Entry 'volumeMesher' is tetgen", self.dict_line(c, "volumeMesher"),
                    "Valid values are: netgen"]
 
+    # 7 levels of the sphere at maxCellSize 0.36: some 600 million cells,
+    # within 32-bit labels, far beyond the memory of a 24 GiB machine
+    beyondTheMemory = {"refinementLevels": 7, "maxCellSize": 0.36}
+
     def refinementLevelsBeyondTheMemory(self):
-        c = self.case("sphere", refinementLevels=10)
+        c = self.case("sphere", **self.beyondTheMemory)
         # pmsh::FatalError (not an IOerror): the file and line in the text
         pmshDict = self.path(c, "system/pmshDict")
-        return c, ["Entry 'refinementLevels' in dictionary \"%s\" (line %d) is 10"
+        return c, ["Entry 'refinementLevels' in dictionary \"%s\" (line %d) is 7"
                    % (pmshDict, line_of(pmshDict, "refinementLevels")),
                    "cannot fit in the memory", "of memory", "fewer refinementLevels",
                    "-noMemoryCheck",
@@ -559,6 +563,24 @@ class badInput(BadInputTest, cases):
         log = self.expect_fatal(*self.refinementLevelsBeyondTheMemory())
         self.assertNotIn("Stage 3", log, "the memory check came too late")
 
+    def test_threeBillionCellsStopAtTheLabelsOrTheMemoryAfterTheCoarseMesh(self):
+        # 7 levels of the sphere at maxCellSize 0.21: some 3 billion cells,
+        # 6 billion faces. 32-bit labels cannot hold them: the label stop,
+        # before the partition. 64-bit labels can: on to the memory check,
+        # which refuses them on this machine
+        c = self.case("sphere", refinementLevels=7, maxCellSize=0.21)
+        if os.environ.get("WM_LABEL_SIZE", "32") == "32":
+            log = self.expect_fatal(c, ["Entry 'refinementLevels'",
+                                        "too large for this OpenFOAM's 32-bit labels",
+                                        "WM_LABEL_SIZE=64",
+                                        "at most 6 refinementLevels"])
+        else:
+            log = self.expect_fatal(c, ["Entry 'refinementLevels'",
+                                        "cannot fit in the memory"])
+            self.assertNotIn("-bit labels", log)
+        self.assertIn("expected fine cells: 2.9", log)
+        self.assertNotIn("Stage 2", log, "the label or memory check came too late")
+
     # -- case files -------------------------------------------------------
 
     def test_missingControlDict(self):
@@ -586,7 +608,8 @@ class badInput(BadInputTest, cases):
         c.set_entry("system/pmshDict", "grading", 2)
         self.expect_fatal(c, ["Entry 'grading'"], args=["-overwrite"])
         c.set_entry("system/pmshDict", "grading", 0.3)
-        c.set_entry("system/pmshDict", "refinementLevels", 10)
+        for key, value in self.beyondTheMemory.items():
+            c.set_entry("system/pmshDict", key, value)
         self.expect_fatal(c, ["Entry 'refinementLevels'", "memory"], args=["-overwrite"])
         c.check_mesh()
 
@@ -726,7 +749,8 @@ class badInputParallel(BadInputTest, cases):
         c.set_entry("system/pmshDict", "volumeMesher", "tetgen")
         self.expect_fatal(c, ["Entry 'volumeMesher'"], np=2, args=["-overwrite"])
         c.set_entry("system/pmshDict", "volumeMesher", "netgen")
-        c.set_entry("system/pmshDict", "refinementLevels", 10)
+        for key, value in self.beyondTheMemory.items():
+            c.set_entry("system/pmshDict", key, value)
         self.expect_fatal(c, ["Entry 'refinementLevels'", "memory"], np=2,
                           args=["-overwrite"])
         self.assertRegex(c.check_mesh(np=2), r"Coupled point location match.*OK")

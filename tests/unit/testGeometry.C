@@ -44,7 +44,7 @@ double checkCoarseMesh(const CoarseMesh& m)
     EXPECT_FALSE(m.boundary.empty());
 
     double tetVolume = 0;
-    for (const tetCell& t : m.tets)
+    for (const tetVerts& t : m.tets)
     {
         const double v6 = tetVolume6(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
         EXPECT_GT(v6, 0);
@@ -80,7 +80,7 @@ double checkCoarseMesh(const CoarseMesh& m)
 
     // Every point used
     std::vector<bool> used(m.points.size(), false);
-    for (const tetCell& t : m.tets)
+    for (const tetVerts& t : m.tets)
     {
         for (label p : t) used[p] = true;
     }
@@ -90,23 +90,23 @@ double checkCoarseMesh(const CoarseMesh& m)
 }
 
 
-double radius(const point& p)
+double radius(const point3& p)
 {
     return std::sqrt(magSqr(p));
 }
 
 
-double distanceToTriangle(const stlSurface& s, label t, const point& p)
+double distanceToTriangle(const stlSurface& s, label t, const point3& p)
 {
     // Brute force: sample-free exact distance by projecting onto the plane
     // and clamping through the three edges
-    const point& a = s.points[s.triangles[t][0]];
-    const point& b = s.points[s.triangles[t][1]];
-    const point& c = s.points[s.triangles[t][2]];
-    const vector n = cross(b - a, c - a);
+    const point3& a = s.points[s.triangles[t][0]];
+    const point3& b = s.points[s.triangles[t][1]];
+    const point3& c = s.points[s.triangles[t][2]];
+    const vector3 n = cross(b - a, c - a);
     const double nn = magSqr(n);
-    const point q = p - (dot(p - a, n)/nn)*n;
-    auto inside = [&](const point& x)
+    const point3 q = p - (dot(p - a, n)/nn)*n;
+    auto inside = [&](const point3& x)
     {
         return dot(cross(b - a, x - a), n) >= 0
             && dot(cross(c - b, x - b), n) >= 0
@@ -116,7 +116,7 @@ double distanceToTriangle(const stlSurface& s, label t, const point& p)
     {
         return std::sqrt(magSqr(p - q));
     }
-    auto seg = [&](const point& u, const point& v)
+    auto seg = [&](const point3& u, const point3& v)
     {
         const double l2 = magSqr(v - u);
         double tt = dot(p - u, v - u)/l2;
@@ -127,7 +127,7 @@ double distanceToTriangle(const stlSurface& s, label t, const point& p)
 }
 
 
-double distanceToStl(const stlSurface& s, const point& p)
+double distanceToStl(const stlSurface& s, const point3& p)
 {
     double d = 1e300;
     for (label t = 0; t < s.nTriangles(); ++t)
@@ -138,9 +138,9 @@ double distanceToStl(const stlSurface& s, const point& p)
 }
 
 
-bool sameBits(const point& a, const point& b)
+bool sameBits(const point3& a, const point3& b)
 {
-    return std::memcmp(a.data(), b.data(), sizeof(point)) == 0;
+    return std::memcmp(a.data(), b.data(), sizeof(point3)) == 0;
 }
 
 
@@ -148,12 +148,12 @@ bool sameBits(const point& a, const point& b)
 // unit cube, 12 triangles, outward
 struct boxStl
 {
-    std::vector<point> p
+    std::vector<point3> p
     {
         {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
         {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}
     };
-    std::vector<triFace> t
+    std::vector<triVerts> t
     {
         {0, 2, 1}, {0, 3, 2},   // z = 0
         {4, 5, 6}, {4, 6, 7},   // z = 1
@@ -168,7 +168,7 @@ struct boxStl
         std::ostringstream os;
         os.precision(17);
         os  << "solid " << name << "\n";
-        for (const triFace& f : t)
+        for (const triVerts& f : t)
         {
             os  << " facet normal 0 0 0\n  outer loop\n";
             for (label v : f)
@@ -187,7 +187,7 @@ struct boxStl
         std::copy(header.begin(), header.end(), s.begin());
         const std::uint32_t n = std::uint32_t(t.size());
         s.append(reinterpret_cast<const char*>(&n), 4);
-        for (const triFace& f : t)
+        for (const triVerts& f : t)
         {
             float rec[12] = {0, 0, 0};
             for (int k = 0; k < 3; ++k)
@@ -209,8 +209,8 @@ struct boxStl
 //  centre lies in the square [lo, hi]^2) and "walls" (the rest).
 std::string cubeWithInlet(int n, double lo, double hi)
 {
-    std::vector<std::pair<bool, std::array<point, 3>>> tris;
-    auto side = [&](const point& o, const vector& du, const vector& dv, bool x0)
+    std::vector<std::pair<bool, std::array<point3, 3>>> tris;
+    auto side = [&](const point3& o, const vector3& du, const vector3& dv, bool x0)
     {
         for (int i = 0; i < n; ++i)
         {
@@ -220,7 +220,7 @@ std::string cubeWithInlet(int n, double lo, double hi)
                 {
                     return o + (double(a)/n)*du + (double(b)/n)*dv;
                 };
-                const point centre = o + (0.5/n)*((2*i + 1)*du + (2*j + 1)*dv);
+                const point3 centre = o + (0.5/n)*((2*i + 1)*du + (2*j + 1)*dv);
                 const bool inlet = x0
                     && centre[1] > lo && centre[1] < hi
                     && centre[2] > lo && centre[2] < hi;
@@ -247,7 +247,7 @@ std::string cubeWithInlet(int n, double lo, double hi)
         {
             if (t.first != (solid == 0)) continue;
             os  << "facet normal 0 0 0\nouter loop\n";
-            for (const point& p : t.second)
+            for (const point3& p : t.second)
             {
                 os  << "vertex " << p[0] << ' ' << p[1] << ' ' << p[2] << "\n";
             }
@@ -303,7 +303,7 @@ TEST(coarseMesher, hxtFillsNetgensSurfaceKeepingItBitForBit)
         // Netgen's surface, points and faces, is the boundary of the fill
         ASSERT_GE(m.points.size(), surface.points.size()) << file;
         EXPECT_EQ(0, std::memcmp(m.points.data(), surface.points.data(),
-                                 surface.points.size()*sizeof(point))) << file;
+                                 surface.points.size()*sizeof(point3))) << file;
         ASSERT_EQ(m.boundary.size(), surface.boundary.size()) << file;
         for (std::size_t b = 0; b < m.boundary.size(); ++b)
         {
@@ -323,9 +323,9 @@ TEST(csgGeometry, sphereProjectionIsExactAndPure)
     std::uniform_real_distribution<double> u(-1, 1);
     for (int i = 0; i < 100; ++i)
     {
-        point d{u(gen), u(gen), u(gen)};
+        point3 d{u(gen), u(gen), u(gen)};
         d = (1.1/radius(d))*d;
-        const point q = g->projectToSurface(d, 0);
+        const point3 q = g->projectToSurface(d, 0);
         EXPECT_NEAR(radius(q), 1.0, 1e-12);
         EXPECT_TRUE(sameBits(q, g->projectToSurface(d, 0)));
         // Direction kept
@@ -336,7 +336,7 @@ TEST(csgGeometry, sphereProjectionIsExactAndPure)
 
 
 //- How far x is from the true surface of shaft.geo that the patch lies on.
-double offShaftPatch(const std::string& patch, const point& x)
+double offShaftPatch(const std::string& patch, const point3& x)
 {
     const double r = std::hypot(x[0], x[1]);
     if (patch == "inlet") return std::abs(x[2]);
@@ -375,7 +375,7 @@ TEST(csgGeometry, shaftPatchesAndEdgeProjection)
         }
 
         // A face's centroid projects onto its true surface
-        const point c = (1.0/3)*(m.points[f.v[0]] + m.points[f.v[1]] + m.points[f.v[2]]);
+        const point3 c = (1.0/3)*(m.points[f.v[0]] + m.points[f.v[1]] + m.points[f.v[2]]);
         EXPECT_LT(offShaftPatch(name, g->projectToSurface(c, f.surface)), 1e-12) << name;
     }
     EXPECT_EQ(nFaces.size(), 5u);
@@ -386,7 +386,7 @@ TEST(csgGeometry, shaftPatchesAndEdgeProjection)
     {
         if (m.patches[f.patch].name == "shoulder")
         {
-            const vector n = cross
+            const vector3 n = cross
             (
                 m.points[f.v[1]] - m.points[f.v[0]],
                 m.points[f.v[2]] - m.points[f.v[0]]
@@ -419,8 +419,8 @@ TEST(csgGeometry, shaftPatchesAndEdgeProjection)
         {
             continue;
         }
-        const point mid = midPoint(m.points[ef.first.first], m.points[ef.first.second]);
-        const point q = g->projectToEdge(mid, s1, s2);
+        const point3 mid = midPoint(m.points[ef.first.first], m.points[ef.first.second]);
+        const point3 q = g->projectToEdge(mid, s1, s2);
         EXPECT_TRUE(sameBits(q, g->projectToEdge(mid, s1, s2)));
         EXPECT_TRUE(sameBits(q, g->projectToEdge(mid, s2, s1)));
         EXPECT_LT(offShaftPatch(m.patches[f1.patch].name, q), 1e-10);
@@ -686,7 +686,7 @@ TEST(stlGeometry, sphereAsciiAndBinaryGiveTheSameMesh)
         EXPECT_EQ(f.patch, 0);
         for (label p : f.v)
         {
-            point q;
+            point3 q;
             sg.nearestTriangle(ma.points[p], q);
             EXPECT_LT(std::sqrt(magSqr(q - ma.points[p])), 1e-9);
         }
@@ -721,7 +721,7 @@ TEST(stlGeometry, boxPatchesAndRegions)
         // All three points on the face's surface
         for (label p : f.v)
         {
-            const point q = g->projectToSurface(m.points[p], f.surface);
+            const point3 q = g->projectToSurface(m.points[p], f.surface);
             EXPECT_LT(std::sqrt(magSqr(q - m.points[p])), 1e-12);
         }
     }
@@ -752,7 +752,7 @@ TEST(stlGeometry, coplanarSolidsKeepTheirBoundary)
         if (m.patches[f.patch].name != "inlet") continue;
         for (label p : f.v)
         {
-            const point& x = m.points[p];
+            const point3& x = m.points[p];
             EXPECT_EQ(x[0], 0.0);
             EXPECT_GE(x[1], 0.25 - 1e-12);
             EXPECT_LE(x[1], 0.75 + 1e-12);
@@ -776,8 +776,8 @@ TEST(stlGeometry, projection)
     std::uniform_real_distribution<double> u(-1.3, 1.3);
     for (int i = 0; i < 200; ++i)
     {
-        const point p{u(gen), u(gen), u(gen)};
-        const point q = g->projectToSurface(p, 0);
+        const point3 p{u(gen), u(gen), u(gen)};
+        const point3 q = g->projectToSurface(p, 0);
         EXPECT_TRUE(sameBits(q, g->projectToSurface(p, 0)));
         // On the triangles, and nearest
         EXPECT_LT(distanceToStl(sg.surface(), q), 1e-12);
@@ -802,8 +802,8 @@ TEST(stlGeometry, projection)
     ASSERT_NE(rx0, ry0);
     for (int i = 0; i < 50; ++i)
     {
-        const point p{0.1*u(gen), 0.1*u(gen), 0.5 + 0.3*u(gen)};
-        const point q = b->projectToEdge(p, rx0, ry0);
+        const point3 p{0.1*u(gen), 0.1*u(gen), 0.5 + 0.3*u(gen)};
+        const point3 q = b->projectToEdge(p, rx0, ry0);
         EXPECT_EQ(q[0], 0.0);
         EXPECT_EQ(q[1], 0.0);
         EXPECT_NEAR(q[2], std::min(1.0, std::max(0.0, p[2])), 1e-15);
@@ -817,7 +817,7 @@ TEST(stlGeometry, projection)
         if (s.points[f[0]][0] == 2 && s.points[f[1]][0] == 2 && s.points[f[2]][0] == 2) rx1 = region[t];
     }
     ASSERT_GE(rx1, 0);
-    const point q = b->projectToEdge({1, 0.5, 0.5}, rx0, rx1);
+    const point3 q = b->projectToEdge({1, 0.5, 0.5}, rx0, rx1);
     EXPECT_EQ(q[0], 0.0);
     EXPECT_FATAL(b->projectToSurface({0, 0, 0}, 6), "valid surfaces are 0..5");
 }
@@ -834,12 +834,12 @@ TEST(stlGeometry, projectionIsAsCloseToTheTrueSphereAsTheFacets)
     double facetDepth = 0, longestEdge = 0;
     for (label t = 0; t < s.nTriangles(); ++t)
     {
-        const vector n = s.areaNormal(t);
-        const point& a = s.points[s.triangles[t][0]];
+        const vector3 n = s.areaNormal(t);
+        const point3& a = s.points[s.triangles[t][0]];
         facetDepth = std::max(facetDepth, 1 - dot(n, a)/std::sqrt(magSqr(n)));
         for (int k = 0; k < 3; ++k)
         {
-            const vector e = s.points[s.triangles[t][(k + 1) % 3]] - s.points[s.triangles[t][k]];
+            const vector3 e = s.points[s.triangles[t][(k + 1) % 3]] - s.points[s.triangles[t][k]];
             longestEdge = std::max(longestEdge, std::sqrt(magSqr(e)));
         }
     }
@@ -850,9 +850,9 @@ TEST(stlGeometry, projectionIsAsCloseToTheTrueSphereAsTheFacets)
     std::uniform_real_distribution<double> u(-1, 1);
     for (int i = 0; i < 2000; ++i)
     {
-        point p{u(gen), u(gen), u(gen)};
+        point3 p{u(gen), u(gen), u(gen)};
         p = ((1 + 0.2*u(gen))/radius(p))*p;
-        const point q = g->projectToSurface(p, 0);
+        const point3 q = g->projectToSurface(p, 0);
         EXPECT_LE(radius(q), 1 + 1e-6) << str(p);
         EXPECT_GE(radius(q), 1 - facetDepth - 1e-6) << str(p);
         EXPECT_LT(std::sqrt(magSqr(q - (1/radius(p))*p)), longestEdge) << str(p);
@@ -923,11 +923,11 @@ TEST(csgGeometry, periodicSidesAreImagesOfEachOtherByOneTranslation)
     // Every face of the first side has its image among the second's faces
     std::map<label, label> image;
     for (const auto& pair : m.periodicPoints) image[pair[0]] = pair[1];
-    std::set<triFace> second;
+    std::set<triVerts> second;
     label nFirst = 0;
     for (const coarseBoundaryFace& b : m.boundary)
     {
-        triFace f = b.v;
+        triVerts f = b.v;
         std::sort(f.begin(), f.end());
         if (b.patch == pp.second) second.insert(f);
         nFirst += b.patch == pp.first;
@@ -937,7 +937,7 @@ TEST(csgGeometry, periodicSidesAreImagesOfEachOtherByOneTranslation)
     for (const coarseBoundaryFace& b : m.boundary)
     {
         if (b.patch != pp.first) continue;
-        triFace f{image.at(b.v[0]), image.at(b.v[1]), image.at(b.v[2])};
+        triVerts f{image.at(b.v[0]), image.at(b.v[1]), image.at(b.v[2])};
         std::sort(f.begin(), f.end());
         EXPECT_EQ(second.count(f), 1u);
     }

@@ -15,13 +15,13 @@ namespace
 {
 
 //- The groups of forEachSamePointsGroup: sorted points -> ids, in visit order.
-std::vector<std::pair<triFace, std::vector<matchId>>> groupsOf
+std::vector<std::pair<triVerts, std::vector<matchId>>> groupsOf
 (
     std::size_t nPoints,
-    const std::vector<triFace>& faces
+    const std::vector<triVerts>& faces
 )
 {
-    std::vector<std::pair<triFace, std::vector<matchId>>> groups;
+    std::vector<std::pair<triVerts, std::vector<matchId>>> groups;
     forEachSamePointsGroup
     (
         nPoints, matchId(faces.size()), [&](matchId id) { return faces[id]; },
@@ -40,15 +40,15 @@ TEST(matchByPoints, groupsAreThoseOfAMapInTheMapsOrder)
 {
     // Random triangles on few points: many groups of one, two and more
     std::mt19937 random(7);
-    std::uniform_int_distribution<label> point(0, 9);
-    std::vector<triFace> faces;
+    std::uniform_int_distribution<label> pointIndex(0, 9);
+    std::vector<triVerts> faces;
     while (faces.size() < 2000)
     {
-        const triFace f{point(random), point(random), point(random)};
+        const triVerts f{pointIndex(random), pointIndex(random), pointIndex(random)};
         if (f[0] != f[1] && f[1] != f[2] && f[0] != f[2]) faces.push_back(f);
     }
 
-    std::map<triFace, std::vector<matchId>> expected;
+    std::map<triVerts, std::vector<matchId>> expected;
     for (matchId id = 0; id < faces.size(); ++id)
     {
         expected[sortedPoints(faces[id])].push_back(id);
@@ -82,9 +82,9 @@ TEST(tetFaceMatching, twoTetsAndTheirSurfaceFit)
 {
     // Tets (0 1 2 3) and (4 1 3 2) share face 3 of each, (1 2 3), from
     // either side
-    const std::vector<tetCell> tets{{0, 1, 2, 3}, {4, 1, 3, 2}};
-    std::vector<triFace> surface;
-    for (const tetCell& t : tets)
+    const std::vector<tetVerts> tets{{0, 1, 2, 3}, {4, 1, 3, 2}};
+    std::vector<triVerts> surface;
+    for (const tetVerts& t : tets)
     {
         for (int f = 0; f < 3; ++f) surface.push_back(tetFace(t, f));
     }
@@ -95,11 +95,11 @@ TEST(tetFaceMatching, twoTetsAndTheirSurfaceFit)
     EXPECT_EQ(m.across[4 + 1], faceId(8 + 4));  // face 1 of tet 1: triangle 4
 
     // Each misfit, named with its count
-    auto problemsWith = [&](std::vector<triFace> s)
+    auto problemsWith = [&](std::vector<triVerts> s)
     {
         return matchTetFaces(5, tets, s).problems;
     };
-    std::vector<triFace> s = surface;
+    std::vector<triVerts> s = surface;
     s.pop_back();
     EXPECT_NE(problemsWith(s).find("1 tet faces are on no other tet"), std::string::npos);
     s = surface;

@@ -309,8 +309,71 @@ TEST(memoryEstimate, theSerialRunIsOneRankOnItsMachineAndNoMemoryCheckGoesOn)
         [&] { estimateAndCheckMemory(serial, sphereSettings(10), 917, sphereWeighted(10), true); }
     );
     EXPECT_NE(m.find("'refinementLevels'"), std::string::npos) << m;
-    EXPECT_NO_THROW(estimateAndCheckMemory(serial, sphereSettings(10), 917, sphereWeighted(10), false));
     EXPECT_NO_THROW(estimateAndCheckMemory(serial, sphereSettings(1), 917, sphereWeighted(1), true));
+
+    // -noMemoryCheck goes on; labels are a limit of the build, no option
+    // skips them: 10 levels (some 10^12 cells) pass 32-bit labels
+    auto noMemoryCheck = [&]
+    {
+        estimateAndCheckMemory(serial, sphereSettings(10), 917, sphereWeighted(10), false);
+    };
+    if (labelBits == 64)
+    {
+        EXPECT_NO_THROW(noMemoryCheck());
+    }
+    else
+    {
+        EXPECT_HAS(errorOf(noMemoryCheck), "32-bit labels");
+    }
+}
+
+
+TEST(labelEstimate, aMeshSurelyPastTheLabelLimitStopsNamingTheEntryAndWhatFits)
+{
+    // 45k cells expected, at least 4.0/4.8 of them, two faces a cell:
+    // at least 75k faces
+    const meshSettings s = sphereSettings(2);
+    EXPECT_NO_THROW(checkLabelEstimate(s, 917, sphereWeighted(2), 75000));
+    const std::string m = errorOf
+    (
+        [&] { checkLabelEstimate(s, 917, sphereWeighted(2), 74000); }
+    );
+    EXPECT_HAS(m, "Entry 'refinementLevels' in dictionary \"/cases/sphere/system/pmshDict\" (line 19) is 2");
+    EXPECT_HAS(m, "too large for this OpenFOAM's " + std::to_string(labelBits) + "-bit labels (largest label 74000)");
+    EXPECT_HAS(m, "give about 45000 fine cells");
+    EXPECT_HAS(m, "at least 75000 faces");
+    EXPECT_HAS(m, "WM_LABEL_SIZE=64");
+    EXPECT_HAS(m, "at most 1 refinementLevels");
+}
+
+
+TEST(labelEstimate, threeBillionCellsStopAtTheLabelsWith32BitsAndAtTheMemoryWith64)
+{
+    // The sphere at the level where Netgen gives some 3 billion cells: a
+    // 32-bit build cannot hold its faces (at least 5 billion), a 64-bit
+    // one goes on to the memory check, which refuses it on a machine of
+    // 24 GiB (at least 120 bytes a cell)
+    const double weighted = weightedFor(3e9, "netgen");
+    const meshSettings s = sphereSettings(7);
+    const std::string m = errorOf
+    (
+        [&] { estimateAndCheckMemory(Communicator(), s, 917, weighted, false); }
+    );
+    if (labelBits == 32)
+    {
+        EXPECT_HAS(m, "too large for this OpenFOAM's 32-bit labels");
+        EXPECT_HAS(m, "at least 5e+09 faces");
+    }
+    else
+    {
+        EXPECT_EQ(m, "");
+        EXPECT_NO_THROW(checkLabelEstimate(s, 917, weighted));
+        EXPECT_HAS
+        (
+            errorOf([&] { check(s, weighted, 1, 1, 24*GiB); }),
+            "cannot fit in the memory of this machine"
+        );
+    }
 }
 
 

@@ -12,6 +12,7 @@
 #include "error.H"
 #include "IFstream.H"
 #include "IStringStream.H"
+#include "foamShims.H"
 
 #include <gtest/gtest.h>
 
@@ -77,13 +78,9 @@ protected:
     //  application's IOdictionary would be.
     meshSettings read(const std::string& entries) const
     {
-        Foam::IStringStream is
-        (
-            entries, Foam::IOstream::ASCII, Foam::IOstream::currentVersion,
-            dictName
-        );
-        is.lineNumber(1);   // as in a file (IFstream): the first line is 1
-        return readMeshSettings(Foam::dictionary(is), dir);
+        Foam::autoPtr<Foam::IStringStream> is = foam::namedStringStream(dictName, entries);
+        is->lineNumber(1);  // as in a file (IFstream): the first line is 1
+        return readMeshSettings(Foam::dictionary(is()), dir);
     }
 
     //- The error of reading a dictionary with these entries.
@@ -595,15 +592,15 @@ TEST_F(meshSettingsTest, readsEveryRegionType)
     const sizeRegion& wake = s.refinementRegions[0];
     EXPECT_EQ(wake.name, "wake");
     EXPECT_EQ(wake.type, sizeRegion::shape::box);
-    EXPECT_EQ(wake.min, (point{0, -0.02, -0.02}));
-    EXPECT_EQ(wake.max, (point{0.1, 0.02, 0.02}));
+    EXPECT_EQ(wake.min, (point3{0, -0.02, -0.02}));
+    EXPECT_EQ(wake.max, (point3{0.1, 0.02, 0.02}));
     EXPECT_DOUBLE_EQ(wake.size, 0.002);
     EXPECT_TRUE(wake.contains({0.05, 0, 0.01}));
     EXPECT_FALSE(wake.contains({0.05, 0, 0.03}));
 
     const sizeRegion& nose = s.refinementRegions[1];
     EXPECT_EQ(nose.type, sizeRegion::shape::sphere);
-    EXPECT_EQ(nose.centre, (point{0, 0, 1e-3}));
+    EXPECT_EQ(nose.centre, (point3{0, 0, 1e-3}));
     EXPECT_DOUBLE_EQ(nose.radius, 0.01);
     EXPECT_DOUBLE_EQ(nose.size, 0.0005);
     EXPECT_TRUE(nose.contains({0, 0.009, 1e-3}));
@@ -611,8 +608,8 @@ TEST_F(meshSettingsTest, readsEveryRegionType)
 
     const sizeRegion& shaft = s.refinementRegions[2];
     EXPECT_EQ(shaft.type, sizeRegion::shape::cylinder);
-    EXPECT_EQ(shaft.point1, (point{0, 0, 0}));
-    EXPECT_EQ(shaft.point2, (point{1, 0, 0}));
+    EXPECT_EQ(shaft.point1, (point3{0, 0, 0}));
+    EXPECT_EQ(shaft.point2, (point3{1, 0, 0}));
     EXPECT_DOUBLE_EQ(shaft.radius, 0.1);
     EXPECT_TRUE(shaft.contains({0.5, 0.09, 0}));
     EXPECT_FALSE(shaft.contains({0.5, 0.08, 0.08}));
@@ -747,7 +744,7 @@ TEST_F(meshSettingsTest, regionSamplesCoverTheShapeAtItsSize)
     const std::size_t visited = forEachSample
     (
         ball, {-10, -10, -10}, {10, 10, 10},
-        [&](const point& p) { EXPECT_TRUE(ball.contains(p)); ++n; }
+        [&](const point3& p) { EXPECT_TRUE(ball.contains(p)); ++n; }
     );
     EXPECT_EQ(n, visited);
     // About the sphere's volume in cubes of the size
@@ -756,8 +753,8 @@ TEST_F(meshSettingsTest, regionSamplesCoverTheShapeAtItsSize)
     // Only the part inside the given bounds
     const std::size_t half = forEachSample
     (
-        ball, {1, -10, -10}, {10, 10, 10}, [](const point& p) { EXPECT_GE(p[0], 1 - 0.1); }
+        ball, {1, -10, -10}, {10, 10, 10}, [](const point3& p) { EXPECT_GE(p[0], 1 - 0.1); }
     );
     EXPECT_NEAR(double(half), 0.5*n, 0.1*n);
-    EXPECT_EQ(forEachSample(ball, {5, 5, 5}, {6, 6, 6}, [](const point&) {}), 0u);
+    EXPECT_EQ(forEachSample(ball, {5, 5, 5}, {6, 6, 6}, [](const point3&) {}), 0u);
 }

@@ -17,6 +17,7 @@
 #include "dictionary.H"
 #include "fileName.H"
 #include "IStringStream.H"
+#include "foamShims.H"
 #include "messageStream.H"
 #include "UPstream.H"
 
@@ -148,7 +149,7 @@ TEST_F(decomposition, kWayMetisIsTheDefault)
     );
     EXPECT_EQ
     (
-        Foam::word(defaultDecompositionDict().get<Foam::word>("method")),
+        Foam::word(foam::get<Foam::word>(defaultDecompositionDict(), "method")),
         Foam::word("metis")
     );
 }
@@ -322,8 +323,8 @@ TEST_F(decomposition, decompositionDictReadsTheFileAndSetsNumberOfSubdomains)
     const Foam::dictionary dict = decompositionDict(Foam::fileName(file), 4);
     const std::string log = testing::internal::GetCapturedStdout();
 
-    EXPECT_EQ(dict.get<Foam::label>("numberOfSubdomains"), 4);
-    EXPECT_EQ(dict.get<Foam::word>("method"), Foam::word("simple"));
+    EXPECT_EQ(foam::get<Foam::label>(dict, "numberOfSubdomains"), 4);
+    EXPECT_EQ(foam::get<Foam::word>(dict, "method"), Foam::word("simple"));
     EXPECT_FALSE(dict.found("FoamFile"));
     EXPECT_TRUE(contains(log, "numberOfSubdomains 8")) << log;
     EXPECT_TRUE(contains(log, file)) << log;
@@ -345,7 +346,7 @@ TEST_F(decomposition, decompositionDictSaysNothingWhenNumberOfSubdomainsAgrees)
     const Foam::dictionary dict = decompositionDict(Foam::fileName(file), 4);
     const std::string log = testing::internal::GetCapturedStdout();
     EXPECT_FALSE(contains(log, "numberOfSubdomains")) << log;
-    EXPECT_EQ(dict.get<Foam::label>("numberOfSubdomains"), 4);
+    EXPECT_EQ(foam::get<Foam::label>(dict, "numberOfSubdomains"), 4);
 }
 
 
@@ -354,8 +355,8 @@ TEST_F(decomposition, decompositionDictWithoutAFileIsMetis)
     const scratchDir dir;
     const Foam::dictionary dict =
         decompositionDict(Foam::fileName(dir.path + "/system/decomposeParDict"), 3);
-    EXPECT_EQ(dict.get<Foam::word>("method"), Foam::word("metis"));
-    EXPECT_EQ(dict.get<Foam::label>("numberOfSubdomains"), 3);
+    EXPECT_EQ(foam::get<Foam::word>(dict, "method"), Foam::word("metis"));
+    EXPECT_EQ(foam::get<Foam::label>(dict, "numberOfSubdomains"), 3);
 }
 
 
@@ -425,15 +426,15 @@ TEST_F(decomposition, theDictionaryComesFromTheCaseOrTheDecomposeParDictOption)
 
     const auto plain = argsOf({"Test-pmshUnit", "-case", dir.path});
     EXPECT_EQ(std::string(decompositionDictFile(*plain)), dir.path + "/system/decomposeParDict");
-    EXPECT_EQ(decompositionDict(*plain, 2).get<Foam::word>("method"), Foam::word("hierarchical"));
+    EXPECT_EQ(foam::get<Foam::word>(decompositionDict(*plain, 2), "method"), Foam::word("hierarchical"));
 
     // A relative file is relative to the case, as argList resolves it in a
     // parallel run
     const auto file = argsOf({"Test-pmshUnit", "-case", dir.path, "-decomposeParDict", "other/myDict"});
     EXPECT_EQ(std::string(decompositionDictFile(*file)), dir.path + "/other/myDict");
     const Foam::dictionary dict = decompositionDict(*file, 2);
-    EXPECT_EQ(dict.get<Foam::word>("method"), Foam::word("simple"));
-    EXPECT_EQ(dict.get<Foam::label>("numberOfSubdomains"), 2);
+    EXPECT_EQ(foam::get<Foam::word>(dict, "method"), Foam::word("simple"));
+    EXPECT_EQ(foam::get<Foam::label>(dict, "numberOfSubdomains"), 2);
 
     // A directory holds a decomposeParDict
     const auto directory =
@@ -554,14 +555,14 @@ TEST_F(decomposition, parallelIsSwitchedOffAroundTheDecompositionOnly)
 
 TEST_F(decomposition, foamErrorsAreLeftAsTheCallerSetThem)
 {
-    const bool oldThrow = Foam::FatalError.throwExceptions(false);
-    const bool oldIOThrow = Foam::FatalIOError.throwExceptions(false);
+    const bool oldThrow = foam::throwExceptions(Foam::FatalError, false);
+    const bool oldIOThrow = foam::throwExceptions(Foam::FatalIOError, false);
     const CoarseMesh m = test::cubeMesh(2);
     EXPECT_THROW(partitionCells(m, 2, dictOf("method simple; coeffs { n (3 1 1); }")), FatalError);
-    EXPECT_FALSE(Foam::FatalError.throwing());
-    EXPECT_FALSE(Foam::FatalIOError.throwing());
-    Foam::FatalError.throwExceptions(oldThrow);
-    Foam::FatalIOError.throwExceptions(oldIOThrow);
+    EXPECT_FALSE(foam::throwing(Foam::FatalError));
+    EXPECT_FALSE(foam::throwing(Foam::FatalIOError));
+    foam::throwExceptions(Foam::FatalError, oldThrow);
+    foam::throwExceptions(Foam::FatalIOError, oldIOThrow);
 }
 
 
@@ -665,7 +666,7 @@ TEST_F(partition, fineCellWeightsFollowVolumeOverLocalSizeAndTheGeometry)
     // cells on the geometry weigh more than inner cells of the same shape
     const CoarseMesh m = test::cubeMesh(4);
     CoarseMesh big = m;
-    for (point& p : big.points) p = 2.0*p;
+    for (point3& p : big.points) p = 2.0*p;
     const std::vector<double> w = fineCellWeights(m, 1.0, 2);
     const std::vector<double> wBig = fineCellWeights(big, 1.0, 2);
     const std::vector<faceNeighbours> nbrs = coarseFaceNeighbours(m);
@@ -714,7 +715,7 @@ TEST_F(partition, fineCellWeightsInsideARefinementRegionFollowOneOverSizeCubed)
     label nInside = 0;
     for (std::size_t c = 0; c < w.size(); ++c)
     {
-        const tetCell& t = m.tets[c];
+        const tetVerts& t = m.tets[c];
         const double z =
             0.25*(m.points[t[0]][2] + m.points[t[1]][2] + m.points[t[2]][2] + m.points[t[3]][2]);
         const bool onGeometry = std::any_of(nbrs[c].begin(), nbrs[c].end(), isBoundaryNeighbour);
@@ -741,7 +742,7 @@ TEST_F(partition, balancedPartsCarryEqualWeightAndStayManifolds)
     std::vector<double> w(m.tets.size(), 1.0);
     for (std::size_t c = 0; c < w.size(); ++c)
     {
-        const tetCell& t = m.tets[c];
+        const tetVerts& t = m.tets[c];
         const double x = 0.25*(m.points[t[0]][0] + m.points[t[1]][0] + m.points[t[2]][0] + m.points[t[3]][0]);
         if (x < 0.5) w[c] = 3;
     }

@@ -38,8 +38,8 @@ volumeMeshParameters partitionNamed(const std::string& what)
 TEST(partitionVolume, firstAttemptSucceedsWithTheChosenBackend)
 {
     const closedSurface sphere = icosphere(2);
-    const std::vector<point>& pts = sphere.points;
-    const std::vector<triFace>& tris = sphere.triangles;
+    const std::vector<point3>& pts = sphere.points;
+    const std::vector<triVerts>& tris = sphere.triangles;
     for (const std::string& backend : VolumeMesher::names())
     {
         const partitionVolumeResult r = meshVolumeWithFallbacks
@@ -55,8 +55,8 @@ TEST(partitionVolume, firstAttemptSucceedsWithTheChosenBackend)
 TEST(partitionVolume, failingEverywhereWritesTheSurfaceAndNamesPartitionAndFile)
 {
     const closedSurface sphere = icosphere(2);
-    const std::vector<point>& pts = sphere.points;
-    const std::vector<triFace>& tris = sphere.triangles;
+    const std::vector<point3>& pts = sphere.points;
+    const std::vector<triVerts>& tris = sphere.triangles;
     const std::string stl = tempFile("failedPartition3.stl");
     std::filesystem::remove(stl);
 
@@ -119,8 +119,8 @@ TEST(partitionVolume, retriesWithoutARiskyOptimiserAndWithMoreOfACuringOne)
 TEST(partitionVolume, aFailingMesherFallsBackToTheNextOne)
 {
     const closedSurface sphere = icosphere(2);
-    const std::vector<point>& pts = sphere.points;
-    const std::vector<triFace>& tris = sphere.triangles;
+    const std::vector<point3>& pts = sphere.points;
+    const std::vector<triVerts>& tris = sphere.triangles;
     const partitionVolumeResult r = meshVolumeWithFallbacks
     (
         meshers(std::make_unique<failingMesher>(), VolumeMesher::New("hxt")),
@@ -135,8 +135,8 @@ TEST(partitionVolume, aFailingMesherFallsBackToTheNextOne)
 TEST(partitionVolume, aCrashingMesherFallsBackToTheNextOne)
 {
     const closedSurface sphere = icosphere(2);
-    const std::vector<point>& pts = sphere.points;
-    const std::vector<triFace>& tris = sphere.triangles;
+    const std::vector<point3>& pts = sphere.points;
+    const std::vector<triVerts>& tris = sphere.triangles;
     volumeMeshParameters p;
     p.what = "the surface of partition 1";
     const partitionVolumeResult r = meshVolumeWithFallbacks
@@ -153,8 +153,8 @@ TEST(partitionVolume, aCrashingMesherFallsBackToTheNextOne)
 TEST(partitionVolume, multithreadedHxtGivesAConformingMeshOrFallsBackToOneThread)
 {
     const closedSurface sphere = icosphere(2);
-    const std::vector<point>& pts = sphere.points;
-    const std::vector<triFace>& tris = sphere.triangles;
+    const std::vector<point3>& pts = sphere.points;
+    const std::vector<triVerts>& tris = sphere.triangles;
     volumeMeshParameters p;
     p.threads = 2;
     for (int run = 0; run < 5; ++run)
@@ -170,8 +170,8 @@ TEST(partitionVolume, multithreadedHxtGivesAConformingMeshOrFallsBackToOneThread
 TEST(meshInChildProcess, returnsTheChildsMeshBitForBit)
 {
     const closedSurface sphere = icosphere(2);
-    const std::vector<point>& pts = sphere.points;
-    const std::vector<triFace>& tris = sphere.triangles;
+    const std::vector<point3>& pts = sphere.points;
+    const std::vector<triVerts>& tris = sphere.triangles;
     const TetMesh direct = VolumeMesher::New("netgen")->mesh(pts, tris, {});
     const TetMesh child = meshInChildProcess
     (

@@ -65,7 +65,7 @@ tetMesh kuhnGrid(int nx, int ny, int nz)
     return kuhnGridAt
     (
         nx, ny, nz,
-        [&](int i, int j, int k) { return point{coord(i), 0.5*coord(j), 2*coord(k)}; }
+        [&](int i, int j, int k) { return point3{coord(i), 0.5*coord(j), 2*coord(k)}; }
     );
 }
 
@@ -87,7 +87,7 @@ std::vector<meshPatch> boxPatches()
 
 //- Region of a boundary face of a box from its centroid (see boxPatches).
 //  Faces on no side of the bounding box (slanted faces) go to zMax.
-label boxRegion(const point& c, const point& lo, const point& hi)
+label boxRegion(const point3& c, const point3& lo, const point3& hi)
 {
     const double eps = 1e-9;
     if (std::abs(c[0] - lo[0]) < eps) return 0;
@@ -101,7 +101,7 @@ label boxRegion(const point& c, const point& lo, const point& hi)
 
 
 //- Every OpenFOAM ordering and orientation rule, checked on a tetPolyMesh.
-void expectValidPolyMesh(const tetPolyMesh& mesh, const std::vector<tetCell>& tets)
+void expectValidPolyMesh(const tetPolyMesh& mesh, const std::vector<tetVerts>& tets)
 {
     const auto& p = mesh.points;
     const label nInt = mesh.nInternalFaces();
@@ -112,24 +112,24 @@ void expectValidPolyMesh(const tetPolyMesh& mesh, const std::vector<tetCell>& te
     // Each tet has 4 faces: 4*nCells = 2*nInternal + nBoundary
     EXPECT_EQ(4*mesh.nCells, 2*nInt + (mesh.nFaces() - nInt));
 
-    std::vector<point> C(tets.size());
+    std::vector<point3> C(tets.size());
     for (std::size_t c = 0; c < tets.size(); ++c)
     {
         C[c] = cellCentre(p, tets[c]);
     }
 
-    std::vector<vector> sumS(tets.size(), {0, 0, 0});
+    std::vector<vector3> sumS(tets.size(), {0, 0, 0});
     std::vector<int> nCellFaces(tets.size(), 0);
 
     for (label f = 0; f < mesh.nFaces(); ++f)
     {
-        const triFace& face = mesh.faces[f];
+        const triVerts& face = mesh.faces[f];
         const label own = mesh.owner[f];
         ASSERT_GE(own, 0);
         ASSERT_LT(own, mesh.nCells);
 
-        const vector S = faceNormal(p, face);
-        const point fc = centroid(p, {face[0], face[1], face[2]});
+        const vector3 S = faceNormal(p, face);
+        const point3 fc = centroid(p, {face[0], face[1], face[2]});
 
         // The face's points are points of its owner tet
         for (label v : face)
@@ -187,8 +187,8 @@ void expectValidPolyMesh(const tetPolyMesh& mesh, const std::vector<tetCell>& te
 //- Patch of each face's region, checked by the face centroid.
 void expectBoxPatchesByGeometry(const tetPolyMesh& mesh, std::size_t nPhysical)
 {
-    point lo = mesh.points[0], hi = mesh.points[0];
-    for (const point& p : mesh.points)
+    point3 lo = mesh.points[0], hi = mesh.points[0];
+    for (const point3& p : mesh.points)
     {
         for (int d = 0; d < 3; ++d)
         {
@@ -201,8 +201,8 @@ void expectBoxPatchesByGeometry(const tetPolyMesh& mesh, std::size_t nPhysical)
         const meshPatch& pp = mesh.patches[pi];
         for (label f = pp.start; f < pp.start + pp.size; ++f)
         {
-            const triFace& face = mesh.faces[f];
-            const point c = centroid(mesh.points, {face[0], face[1], face[2]});
+            const triVerts& face = mesh.faces[f];
+            const point3 c = centroid(mesh.points, {face[0], face[1], face[2]});
             EXPECT_EQ(boxRegion(c, lo, hi), label(pi)) << "face " << f << " in " << pp.name;
         }
     }
@@ -213,13 +213,13 @@ void expectBoxPatchesByGeometry(const tetPolyMesh& mesh, std::size_t nPhysical)
 std::vector<int> slabRanks(const tetMesh& m, int nRanks)
 {
     double lo = 1e300, hi = -1e300;
-    for (const point& p : m.points)
+    for (const point3& p : m.points)
     {
         lo = std::min(lo, p[0]);
         hi = std::max(hi, p[0]);
     }
     std::vector<int> rank;
-    for (const tetCell& t : m.tets)
+    for (const tetVerts& t : m.tets)
     {
         const double x = cellCentre(m.points, t)[0];
         rank.push_back(std::min(nRanks - 1, int(nRanks*(x - lo)/(hi - lo))));
@@ -249,13 +249,13 @@ TEST(tetsToPolyMesh, interfaceRegionEncodingRoundTrips)
 TEST(tetsToPolyMesh, tetFaceTableIsOutwardAndOppositeVertex3MinusF)
 {
     const tetMesh m = kuhnGrid(1, 1, 1);
-    for (const tetCell& t : m.tets)
+    for (const tetVerts& t : m.tets)
     {
-        const point C = cellCentre(m.points, t);
+        const point3 C = cellCentre(m.points, t);
         for (int f = 0; f < 4; ++f)
         {
-            const triFace face = tetFace(t, f);
-            const point fc = centroid(m.points, {face[0], face[1], face[2]});
+            const triVerts face = tetFace(t, f);
+            const point3 fc = centroid(m.points, {face[0], face[1], face[2]});
             EXPECT_GT(dot(faceNormal(m.points, face), fc - C), 0) << "face " << f;
             for (label v : face)
             {
@@ -377,7 +377,7 @@ TEST(tetsToPolyMesh, resultDoesNotDependOnBoundaryTriangleOrder)
     // Reverse and rotate the triangles: same mesh expected
     std::reverse(in.tris.begin(), in.tris.end());
     std::reverse(in.regions.begin(), in.regions.end());
-    for (triFace& t : in.tris)
+    for (triVerts& t : in.tris)
     {
         t = {t[1], t[2], t[0]};
     }
@@ -515,9 +515,9 @@ TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
 
                 for (label i = 0; i < pa.size; ++i)
                 {
-                    const triFace& fa = mesh[a].faces[pa.start + i];
-                    const triFace& fb = mesh[b].faces[pb->start + i];
-                    std::array<globalLabel, 3> ga, gb;
+                    const triVerts& fa = mesh[a].faces[pa.start + i];
+                    const triVerts& fb = mesh[b].faces[pb->start + i];
+                    std::array<label, 3> ga, gb;
                     for (int k = 0; k < 3; ++k)
                     {
                         ga[k] = in[a].globalIds[fa[k]];
@@ -539,8 +539,8 @@ TEST(tetsToPolyMesh, processorFacesAreReverseFaceOfEachOtherInGlobalIds)
                 {
                     auto key = [&](label j)
                     {
-                        const triFace& f = mesh[a].faces[pa.start + j];
-                        std::array<globalLabel, 3> k =
+                        const triVerts& f = mesh[a].faces[pa.start + j];
+                        std::array<label, 3> k =
                             {in[a].globalIds[f[0]], in[a].globalIds[f[1]], in[a].globalIds[f[2]]};
                         std::sort(k.begin(), k.end());
                         return k;

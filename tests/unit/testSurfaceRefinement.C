@@ -25,11 +25,11 @@ namespace
 class analyticSphere : public Geometry
 {
 public:
-    point projectToSurface(const point& p, label) const override
+    point3 projectToSurface(const point3& p, label) const override
     {
         return (1.0/std::sqrt(magSqr(p)))*p;
     }
-    point projectToEdge(const point& p, label s1, label) const override
+    point3 projectToEdge(const point3& p, label s1, label) const override
     {
         return projectToSurface(p, s1);
     }
@@ -49,8 +49,8 @@ CoarseMesh octahedron()
         {
             for (label z : {5, 6})
             {
-                tetCell t{0, x, y, z};
-                triFace f{x, y, z};
+                tetVerts t{0, x, y, z};
+                triVerts f{x, y, z};
                 const auto& P = m.points;
                 if (tetVolume6(P[t[0]], P[t[1]], P[t[2]], P[t[3]]) < 0)
                 {
@@ -69,17 +69,17 @@ CoarseMesh octahedron()
 std::vector<label> splitByX(const CoarseMesh& m)
 {
     std::vector<label> part;
-    for (const tetCell& t : m.tets)
+    for (const tetVerts& t : m.tets)
     {
         part.push_back(t[1] == 1 ? 0 : 1);
     }
     return part;
 }
 
-double enclosedVolume(const std::vector<point>& pts, const std::vector<triFace>& tris)
+double enclosedVolume(const std::vector<point3>& pts, const std::vector<triVerts>& tris)
 {
     double v6 = 0;
-    for (const triFace& t : tris)
+    for (const triVerts& t : tris)
     {
         v6 += tetVolume6({0, 0, 0}, pts[t[0]], pts[t[1]], pts[t[2]]);
     }
@@ -171,7 +171,7 @@ TEST(surfaceRefinement, refinedFaceCarriesTheIdsOfFigureFour)
 {
     // Coarse face (3, 5, 8) in 1-based ids = points 2, 4, 7
     CoarseMesh m;
-    m.points.assign(8, point{0, 0, 0});
+    m.points.assign(8, point3{0, 0, 0});
     m.points[2] = {0, 0, 0};
     m.points[4] = {1, 0, 0};
     m.points[7] = {0, 1, 0};
@@ -218,7 +218,7 @@ TEST(surfaceRefinement, projectsNewBoundaryVerticesOntoTheGeometry)
     const analyticSphere sphere;
 
     const FineSurface projected = refinePart(m, {}, 0, &sphere, 2);
-    for (const point& p : projected.points)
+    for (const point3& p : projected.points)
     {
         EXPECT_NEAR(std::sqrt(magSqr(p)), 1.0, 1e-12);
     }
@@ -226,7 +226,7 @@ TEST(surfaceRefinement, projectsNewBoundaryVerticesOntoTheGeometry)
     // Without projection the refined points stay on the flat faces
     const FineSurface flat = refinePart(m, {}, 0, nullptr, 2);
     double maxOff = 0;
-    for (const point& p : flat.points)
+    for (const point3& p : flat.points)
     {
         maxOff = std::max(maxOff, std::abs(std::sqrt(magSqr(p)) - 1.0));
     }
@@ -248,7 +248,7 @@ TEST(surfaceRefinement, interfaceVerticesAreBitIdenticalOnBothParts)
     EXPECT_TRUE(closedAndConsistent(s0.triangles));
     EXPECT_TRUE(closedAndConsistent(s1.triangles));
 
-    std::map<barycentricId, point> onPart1;
+    std::map<barycentricId, point3> onPart1;
     for (std::size_t p = 0; p < s1.ids.size(); ++p)
     {
         onPart1[s1.ids[p]] = s1.points[p];
@@ -260,7 +260,7 @@ TEST(surfaceRefinement, interfaceVerticesAreBitIdenticalOnBothParts)
         if (it != onPart1.end())
         {
             ++nShared;
-            EXPECT_EQ(std::memcmp(&it->second, &s0.points[p], sizeof(point)), 0)
+            EXPECT_EQ(std::memcmp(&it->second, &s0.points[p], sizeof(point3)), 0)
                 << s0.ids[p];
         }
     }
@@ -306,7 +306,7 @@ namespace
 class foldingGeometry : public analyticSphere
 {
 public:
-    point projectToSurface(const point& p, label) const override
+    point3 projectToSurface(const point3& p, label) const override
     {
         return (-1.0/std::sqrt(magSqr(p)))*p;
     }
@@ -348,17 +348,17 @@ namespace
 class locallyFoldingSphere : public analyticSphere
 {
 public:
-    point projectToSurface(const point& p, label) const override
+    point3 projectToSurface(const point3& p, label) const override
     {
-        const point q = (1.0/std::sqrt(magSqr(p)))*p;
+        const point3 q = (1.0/std::sqrt(magSqr(p)))*p;
         const double cosAngle = (q[1] + q[2])/std::sqrt(2.0);
         return cosAngle > std::cos(25*M_PI/180) ? (-1.0)*q : q;
     }
 };
 
-std::map<barycentricId, point> pointsById(const FineSurface& s)
+std::map<barycentricId, point3> pointsById(const FineSurface& s)
 {
-    std::map<barycentricId, point> byId;
+    std::map<barycentricId, point3> byId;
     for (std::size_t i = 0; i < s.ids.size(); ++i)
     {
         byId[s.ids[i]] = s.points[i];
@@ -388,7 +388,7 @@ TEST(surfaceRefinement, localFoldIsRepairedLocallyAndOnlyThere)
         // on the sphere: only the faces at edge 3-5 and their neighbours
         // are touched
         label onSphere = 0;
-        for (const point& p : repaired.points)
+        for (const point3& p : repaired.points)
         {
             onSphere += std::abs(magSqr(p) - 1) < 1e-12;
         }
@@ -421,7 +421,7 @@ TEST(surfaceRefinement, foldRepairDecidesAnInterfaceEdgeAlikeOnBothSidesAndAsInS
             const auto it = p1.find(id);
             if (it != p1.end())
             {
-                EXPECT_EQ(std::memcmp(&x, &it->second, sizeof(point)), 0);
+                EXPECT_EQ(std::memcmp(&x, &it->second, sizeof(point3)), 0);
                 nSharedOff += std::abs(magSqr(x) - 1) > 1e-12;
             }
         }
@@ -433,7 +433,7 @@ TEST(surfaceRefinement, foldRepairDecidesAnInterfaceEdgeAlikeOnBothSidesAndAsInS
                 const auto it = pSerial.find(id);
                 if (it != pSerial.end())
                 {
-                    EXPECT_EQ(std::memcmp(&x, &it->second, sizeof(point)), 0);
+                    EXPECT_EQ(std::memcmp(&x, &it->second, sizeof(point3)), 0);
                 }
             }
         }
@@ -460,19 +460,19 @@ label edgesFoldedOntoThemselves
     int levels
 )
 {
-    auto unitNormal = [](const point& a, const point& b, const point& c)
+    auto unitNormal = [](const point3& a, const point3& b, const point3& c)
     {
-        const vector n = cross(b - a, c - a);
+        const vector3 n = cross(b - a, c - a);
         return (1/std::sqrt(magSqr(n)))*n;
     };
     const std::size_t perFace = std::size_t(1) << (2*levels);
-    std::map<std::pair<label, label>, std::vector<std::pair<vector, vector>>> normalsOfEdge;
+    std::map<std::pair<label, label>, std::vector<std::pair<vector3, vector3>>> normalsOfEdge;
     for (std::size_t ti = 0; ti < s.triangles.size(); ++ti)
     {
-        const triFace& t = s.triangles[ti];
-        const triFace& f = ps.faces[ti/perFace];
-        const vector n = unitNormal(s.points[t[0]], s.points[t[1]], s.points[t[2]]);
-        const vector nc = unitNormal(m.points[f[0]], m.points[f[1]], m.points[f[2]]);
+        const triVerts& t = s.triangles[ti];
+        const triVerts& f = ps.faces[ti/perFace];
+        const vector3 n = unitNormal(s.points[t[0]], s.points[t[1]], s.points[t[2]]);
+        const vector3 nc = unitNormal(m.points[f[0]], m.points[f[1]], m.points[f[2]]);
         for (int k = 0; k < 3; ++k)
         {
             const label a = t[k];

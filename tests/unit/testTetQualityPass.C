@@ -36,8 +36,8 @@ double maxNonOrthogonality(const TetMesh& m)
         {
             const faceId other = match.across[4*t + k];
             if (other == noFace || other/4 < t) continue;
-            const triFace f = tetFace(m.tets[t], k);
-            const tetCell& u = m.tets[other/4];
+            const triVerts f = tetFace(m.tets[t], k);
+            const tetVerts& u = m.tets[other/4];
             const label e = u[3 - int(other % 4)];
             const faceQuality q = internalFaceQuality
             (
@@ -56,18 +56,18 @@ double maxNonOrthogonality(const TetMesh& m)
 void expectValid
 (
     const TetMesh& m,
-    const std::vector<point>& before,
+    const std::vector<point3>& before,
     std::size_t nFixed,
-    const std::vector<triFace>& triangles
+    const std::vector<triVerts>& triangles
 )
 {
     ASSERT_GE(m.points.size(), nFixed);
     for (std::size_t i = 0; i < nFixed; ++i)
     {
-        EXPECT_EQ(std::memcmp(m.points[i].data(), before[i].data(), sizeof(point)), 0)
+        EXPECT_EQ(std::memcmp(m.points[i].data(), before[i].data(), sizeof(point3)), 0)
             << "boundary point " << i << " moved";
     }
-    for (const tetCell& c : m.tets)
+    for (const tetVerts& c : m.tets)
     {
         EXPECT_GT
         (
@@ -80,7 +80,7 @@ void expectValid
 
 
 //- The unit cube's 12 outward boundary triangles on its 8 corners.
-std::vector<triFace> cubeTriangles()
+std::vector<triVerts> cubeTriangles()
 {
     // Corner i at (i & 1, (i >> 1) & 1, (i >> 2) & 1)
     return
@@ -94,9 +94,9 @@ std::vector<triFace> cubeTriangles()
     };
 }
 
-std::vector<point> cubeCorners()
+std::vector<point3> cubeCorners()
 {
-    std::vector<point> p;
+    std::vector<point3> p;
     for (int i = 0; i < 8; ++i)
     {
         p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
@@ -109,12 +109,12 @@ std::vector<point> cubeCorners()
 
 TEST(tetQualityPass, faceMeasuresAsCheckMesh)
 {
-    const point a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
-    const point centre{1.0/3, 1.0/3, 0};
+    const point3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+    const point3 centre{1.0/3, 1.0/3, 0};
 
     // Apexes straight above and below the face centre: orthogonal
     const faceQuality straight =
-        internalFaceQuality(a, b, c, centre + point{0, 0, -1}, centre + point{0, 0, 1});
+        internalFaceQuality(a, b, c, centre + point3{0, 0, -1}, centre + point3{0, 0, 1});
     EXPECT_NEAR(straight.nonOrthogonality, 0, 1e-9);
     EXPECT_NEAR(straight.skewness, 0, 1e-9);
 
@@ -123,12 +123,12 @@ TEST(tetQualityPass, faceMeasuresAsCheckMesh)
     // atan(1/2) and crosses the face 1/8 off its centre, which normalised
     // by the face's extent that way (2/3) is a skewness of 0.1875
     const faceQuality leaning =
-        internalFaceQuality(a, b, c, centre + point{0, 0, -1}, centre + point{1, 0, 1});
+        internalFaceQuality(a, b, c, centre + point3{0, 0, -1}, centre + point3{1, 0, 1});
     EXPECT_NEAR(leaning.nonOrthogonality, std::atan(0.5)*180/M_PI, 1e-9);
     EXPECT_NEAR(leaning.skewness, 0.1875, 1e-9);
 
     // A boundary face sees the line from its centre to the cell centre
-    const faceQuality boundary = boundaryFaceQuality(a, b, c, centre + point{1, 0, -1});
+    const faceQuality boundary = boundaryFaceQuality(a, b, c, centre + point3{1, 0, -1});
     EXPECT_NEAR(boundary.nonOrthogonality, 45, 1e-9);
 }
 
@@ -140,13 +140,13 @@ TEST(tetQualityPass, movesABadInteriorPointAndKeepsTheBoundary)
     TetMesh m;
     m.points = cubeCorners();
     m.points.push_back({0.1, 0.12, 0.08});
-    const std::vector<triFace> triangles = cubeTriangles();
-    for (const triFace& f : triangles)
+    const std::vector<triVerts> triangles = cubeTriangles();
+    for (const triVerts& f : triangles)
     {
         // An outward triangle and a point inside: (a, c, b, p) is positive
         m.tets.push_back({f[0], f[2], f[1], 8});
     }
-    const std::vector<point> before = m.points;
+    const std::vector<point3> before = m.points;
     const double worstBefore = maxNonOrthogonality(m);
 
     const qualityPassStats stats = improveWorstCells(m, 8, triangles, {}, 3);
@@ -172,17 +172,17 @@ TEST(tetQualityPass, flipsAFlatPairIntoThreeTets)
     };
     // (d, a, b, c) is positive for the face (a, b, c) outward from it
     m.tets = {{3, 0, 1, 2}, {4, 0, 2, 1}};
-    for (const tetCell& c : m.tets)
+    for (const tetVerts& c : m.tets)
     {
         ASSERT_GT(tetVolume6(m.points[c[0]], m.points[c[1]], m.points[c[2]], m.points[c[3]]), 0);
     }
-    const std::vector<triFace> triangles =
+    const std::vector<triVerts> triangles =
     {
         {3, 1, 0}, {3, 2, 1}, {3, 0, 2},            // lower tet's other faces
         {4, 0, 1}, {4, 1, 2}, {4, 2, 0}             // upper tet's
     };
     ASSERT_TRUE(matchTetFaces(5, m.tets, triangles).fits());
-    const std::vector<point> before = m.points;
+    const std::vector<point3> before = m.points;
 
     const qualityPassStats stats = improveWorstCells(m, 5, triangles, {}, 1);
 
@@ -208,7 +208,7 @@ TEST(tetQualityPass, removesASliverWithAllItsPointsFixed)
         {0.5, 0.5, 1}, {0.5, 0.5, -1}                   // above, below
     };
     m.tets = {{0, 1, 2, 3}, {4, 0, 1, 2}, {4, 0, 2, 3}, {5, 1, 3, 0}, {5, 1, 3, 2}};
-    for (tetCell& c : m.tets)
+    for (tetVerts& c : m.tets)
     {
         if (tetVolume6(m.points[c[0]], m.points[c[1]], m.points[c[2]], m.points[c[3]]) < 0)
         {
@@ -216,10 +216,10 @@ TEST(tetQualityPass, removesASliverWithAllItsPointsFixed)
         }
     }
     // The faces on one tet only, outward
-    std::map<std::array<label, 3>, std::pair<int, triFace>> faces;
-    for (const tetCell& c : m.tets)
+    std::map<std::array<label, 3>, std::pair<int, triVerts>> faces;
+    for (const tetVerts& c : m.tets)
     {
-        for (const triFace& f : outwardTetFaces(c))
+        for (const triVerts& f : outwardTetFaces(c))
         {
             std::array<label, 3> key = f;
             std::sort(key.begin(), key.end());
@@ -228,22 +228,22 @@ TEST(tetQualityPass, removesASliverWithAllItsPointsFixed)
             entry.second = f;
         }
     }
-    std::vector<triFace> triangles;
+    std::vector<triVerts> triangles;
     for (const auto& [key, entry] : faces)
     {
         if (entry.first == 1) triangles.push_back(entry.second);
     }
     ASSERT_TRUE(matchTetFaces(6, m.tets, triangles).fits());
-    const std::vector<point> before = m.points;
+    const std::vector<point3> before = m.points;
 
     const qualityPassStats stats = improveWorstCells(m, 6, triangles, {}, 1);
 
     expectValid(m, before, 6, triangles);
     EXPECT_EQ(stats.nFlips, 1);
     ASSERT_EQ(m.tets.size(), 4u);
-    for (const tetCell& c : m.tets)
+    for (const tetVerts& c : m.tets)
     {
-        const point* p[4] = {&m.points[c[0]], &m.points[c[1]], &m.points[c[2]], &m.points[c[3]]};
+        const point3* p[4] = {&m.points[c[0]], &m.points[c[1]], &m.points[c[2]], &m.points[c[3]]};
         EXPECT_GT(tetVolume6(*p[0], *p[1], *p[2], *p[3]), 0.1);
     }
 }

@@ -40,7 +40,7 @@ surface boundarySurface(const CoarseMesh& m)
     std::map<label, label> index;
     for (const auto& f : m.boundary)
     {
-        triFace t;
+        triVerts t;
         for (int k = 0; k < 3; ++k)
         {
             auto it = index.find(f.v[k]);
@@ -91,7 +91,7 @@ TEST(netgenVolumeMesher, coarseSphereBoundary)
     const TetMesh m2 = mesher->mesh(s.points, s.triangles, p);
     EXPECT_EQ(m2.tets, m.tets);
     ASSERT_EQ(m2.points.size(), m.points.size());
-    EXPECT_EQ(std::memcmp(m.points.data(), m2.points.data(), m.points.size()*sizeof(point)), 0);
+    EXPECT_EQ(std::memcmp(m.points.data(), m2.points.data(), m.points.size()*sizeof(point3)), 0);
 }
 
 
@@ -210,7 +210,7 @@ TEST(hxtVolumeMesher, partitionSurfacesWithEdgesLongerThanTheFineSize)
     {
         const FineSurface s = refinePartSurface(coarse, cellPart, part, g.get(), levels);
         double longest = 0;
-        for (const triFace& t : s.triangles)
+        for (const triVerts& t : s.triangles)
         {
             for (int k = 0; k < 3; ++k)
             {
@@ -253,7 +253,7 @@ TEST(VolumeMesher, meshRejectsAResultThatBreaksTheContract)
         // add up (multithreaded HXT in Gmsh 4.8 did this)
         TetMesh m = good;
         const label interior = label(s.points.size());
-        for (tetCell& t : m.tets)
+        for (tetVerts& t : m.tets)
         {
             auto it = std::find(t.begin(), t.end(), interior);
             if (it != t.end())
@@ -276,7 +276,7 @@ TEST(VolumeMesher, meshRejectsASliverThatCheckMeshWouldFail)
     TetMesh sliver;
     sliver.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, 1e-5}};
     sliver.tets = {{0, 1, 2, 3}};
-    std::vector<triFace> surface;
+    std::vector<triVerts> surface;
     for (int f = 0; f < 4; ++f)
     {
         surface.push_back(tetFace(sliver.tets[0], f));
@@ -301,11 +301,11 @@ TEST(hxtVolumeMesher, surfacesOfSeveralShellsWithHolesAndApartParts)
     // HXT fail, and every such partition went to Netgen.
     const closedSurface outer = icosphere(2);
     closedSurface s = outer;
-    const auto addShell = [&s](const closedSurface& c, double scale, const point& shift, bool flip)
+    const auto addShell = [&s](const closedSurface& c, double scale, const point3& shift, bool flip)
     {
         const label offset = label(s.points.size());
-        for (const point& p : c.points) s.points.push_back(scale*p + shift);
-        for (triFace t : c.triangles)
+        for (const point3& p : c.points) s.points.push_back(scale*p + shift);
+        for (triVerts t : c.triangles)
         {
             if (flip) std::swap(t[1], t[2]);
             s.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
@@ -325,14 +325,14 @@ TEST(hxtVolumeMesher, surfacesOfSeveralShellsWithHolesAndApartParts)
     const auto enclosed6 = [](const closedSurface& c)
     {
         double v = 0;
-        for (const triFace& t : c.triangles)
+        for (const triVerts& t : c.triangles)
         {
             v += dot(c.points[t[0]], cross(c.points[t[1]], c.points[t[2]]));
         }
         return v;
     };
     double volume6 = 0;
-    for (const tetCell& t : m.tets)
+    for (const tetVerts& t : m.tets)
     {
         volume6 += tetVolume6(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
     }
