@@ -527,25 +527,6 @@ TEST_F(decomposition, noMethodIsAFatalError)
 }
 
 
-TEST_F(decomposition, parallelIsSwitchedOffAroundTheDecompositionOnly)
-{
-    // A serial test cannot run MPI; it can check that the flag comes back,
-    // after a failure too
-    const bool oldParRun = Foam::UPstream::parRun();
-    const CoarseMesh m = test::cubeMesh(3);
-    Foam::UPstream::parRun() = true;
-    std::vector<label> part;
-    EXPECT_NO_THROW(part = partitionCells(m, 2, dictOf("method simple; coeffs { n (2 1 1); }")));
-    EXPECT_TRUE(Foam::UPstream::parRun());
-    EXPECT_THROW(partitionCells(m, 2, dictOf("method fooBar;")), FatalError);
-    EXPECT_TRUE(Foam::UPstream::parRun());
-    EXPECT_THROW(partitionCells(m, 3, dictOf("method simple; coeffs { n (2 1 1); }")), FatalError);
-    EXPECT_TRUE(Foam::UPstream::parRun());
-    Foam::UPstream::parRun() = oldParRun;
-    expectGoodPartition(m, part, 2, "simple in a parallel run");
-}
-
-
 TEST_F(decomposition, foamErrorsAreLeftAsTheCallerSetThem)
 {
     const bool oldThrow = foam::throwExceptions(Foam::FatalError, false);
