@@ -4,10 +4,20 @@
 #include "UPstream.H"
 
 #include <cstdlib>
+#include <iostream>
+#include <streambuf>
 
 namespace
 {
 const pmsh::Communicator* theWorld = nullptr;
+
+// Takes what is written and keeps nothing (the stream stays good, as
+// OpenFOAM's Sout on std::cout requires)
+class discardingBuffer : public std::streambuf
+{
+protected:
+    int overflow(int c) override { return traits_type::not_eof(c); }
+};
 }
 
 const pmsh::Communicator& pmsh::test::world()
@@ -36,7 +46,10 @@ int main(int argc, char** argv)
     const pmsh::Communicator comm;
     theWorld = &comm;
     pmsh::setLogRank(comm.rank(), comm.parallel());
-    pmsh::setInfoSilent(true);
+    // The stages' logs (std::cout) would bury GoogleTest's report, which
+    // it prints with printf
+    discardingBuffer discard;
+    std::streambuf* const log = std::cout.rdbuf(&discard);
 
     ::testing::InitGoogleTest(&argc, argv);
     if (!comm.master())
@@ -47,6 +60,7 @@ int main(int argc, char** argv)
     }
     const int failed = RUN_ALL_TESTS();
     const double anyFailed = comm.max(double(failed));
+    std::cout.rdbuf(log);
     if (comm.master() && anyFailed)
     {
         std::cout << "Some rank failed a test" << std::endl;

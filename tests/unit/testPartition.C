@@ -311,7 +311,6 @@ TEST_F(decomposition, decompositionDictReadsTheFileAndSetsNumberOfSubdomains)
       + "numberOfSubdomains 8;\nmethod simple;\ncoeffs\n{\n    n (2 2 1);\n}\n"
     );
 
-    setInfoSilent(false);
     testing::internal::CaptureStdout();
     const Foam::dictionary dict = decompositionDict(Foam::fileName(file), 4);
     const std::string log = testing::internal::GetCapturedStdout();
@@ -334,7 +333,6 @@ TEST_F(decomposition, decompositionDictSaysNothingWhenNumberOfSubdomainsAgrees)
     (
         "decomposeParDict", std::string(foamHeader) + "numberOfSubdomains 4;\nmethod metis;\n"
     );
-    setInfoSilent(false);
     testing::internal::CaptureStdout();
     const Foam::dictionary dict = decompositionDict(Foam::fileName(file), 4);
     const std::string log = testing::internal::GetCapturedStdout();
