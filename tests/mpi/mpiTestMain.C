@@ -3,6 +3,7 @@
 
 #include "UPstream.H"
 
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <streambuf>
@@ -17,6 +18,28 @@ class discardingBuffer : public std::streambuf
 {
 protected:
     int overflow(int c) override { return traits_type::not_eof(c); }
+};
+
+// A failed assertion on a rank other than the master, which does not print
+// GoogleTest's progress: without it only the exit code would tell
+class failurePrinter : public ::testing::EmptyTestEventListener
+{
+    const int rank_;
+public:
+    explicit failurePrinter(int rank) : rank_(rank) {}
+    void OnTestPartResult(const ::testing::TestPartResult& result) override
+    {
+        if (result.failed())
+        {
+            std::printf
+            (
+                "[rank %d] %s:%d: Failure\n%s\n", rank_,
+                result.file_name() ? result.file_name() : "unknown file",
+                result.line_number(), result.message()
+            );
+            std::fflush(stdout);
+        }
+    }
 };
 }
 
@@ -54,9 +77,9 @@ int main(int argc, char** argv)
     ::testing::InitGoogleTest(&argc, argv);
     if (!comm.master())
     {
-        // Failures still print (with the rank's assertion text)
         auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
         delete listeners.Release(listeners.default_result_printer());
+        listeners.Append(new failurePrinter(comm.rank()));
     }
     const int failed = RUN_ALL_TESTS();
     const double anyFailed = comm.max(double(failed));
