@@ -20,7 +20,6 @@ std::ostream theNullStream(&theNullBuffer);
 // Process-wide log settings: written once at start-up.
 int logRank = 0;
 bool logParallel = false;
-bool infoSilent = false;
 
 } // End anonymous namespace
 
@@ -37,15 +36,9 @@ void pmsh::setLogRank(int rank, bool parallel)
 }
 
 
-void pmsh::setInfoSilent(bool silent)
-{
-    infoSilent = silent;
-}
-
-
 std::ostream& pmsh::Info()
 {
-    if (logRank != 0 || infoSilent)
+    if (logRank != 0)
     {
         return theNullStream;
     }

@@ -881,27 +881,6 @@ private:
 
 // * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * //
 
-pmsh::faceQuality pmsh::internalFaceQuality
-(
-    const point3& a, const point3& b, const point3& c,
-    const point3& d, const point3& e
-)
-{
-    const measure m = internalMeasure(a, b, c, d, e);
-    return {degrees(m.tan2), m.skew};
-}
-
-
-pmsh::faceQuality pmsh::boundaryFaceQuality
-(
-    const point3& a, const point3& b, const point3& c, const point3& d
-)
-{
-    const measure m = boundaryMeasure(a, b, c, d);
-    return {degrees(m.tan2), m.skew};
-}
-
-
 pmsh::qualityPassStats pmsh::improveWorstCells
 (
     TetMesh& mesh,

@@ -1,6 +1,7 @@
 // Work the master does alone while the other ranks wait (stage 1, the
 // coarse mesh): it runs once, on the master, every rank goes on after it,
-// and a failure on the master stops every rank together (no rank left
+// the others wait without using their core (the master's threads need
+// it), and a failure on the master stops every rank together (no rank left
 // waiting for a master that threw).
 
 #include "mpiTestMain.H"
@@ -8,8 +9,23 @@
 
 #include <chrono>
 #include <thread>
+#include <time.h>
 
 using namespace pmsh;
+
+namespace
+{
+
+//- CPU seconds this process has used so far.
+double cpuSeconds()
+{
+    timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9*double(t.tv_nsec);
+}
+
+} // End anonymous namespace
+
 
 TEST(masterWork, runsOnceOnTheMasterAndEveryRankGoesOnAfterIt)
 {
@@ -28,6 +44,30 @@ TEST(masterWork, runsOnceOnTheMasterAndEveryRankGoesOnAfterIt)
     // No rank returned before the master's work had finished (one clock:
     // the ranks share this machine)
     EXPECT_GE(comm.min(returnedAt), comm.max(finishedAt));
+}
+
+
+TEST(masterWork, theOtherRanksWaitWithoutUsingTheirCore)
+{
+    // A blocking MPI receive or barrier polls: the waiting rank's CPU time
+    // grows with its wall time (all of it on an idle core, its share on a
+    // loaded one). Sleeping in short steps costs a few wake-ups.
+    const Communicator& comm = test::world();
+    const auto wallStart = std::chrono::steady_clock::now();
+    const double cpuStart = cpuSeconds();
+    comm.masterWorksOthersSleep([&]
+    {
+        std::this_thread::sleep_for(std::chrono::seconds(1));
+    });
+    const double cpu = cpuSeconds() - cpuStart;
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+    if (!comm.master())
+    {
+        EXPECT_LT(cpu, 0.05*wall)
+            << "rank " << comm.rank() << " used " << cpu << " s of CPU in "
+            << wall << " s waiting for the master";
+    }
 }
 
 

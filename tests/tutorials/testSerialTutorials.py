@@ -10,6 +10,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -75,7 +76,9 @@ class sphere(CaseTest):
     def test_summaryJsonAgreesWithCheckMesh(self):
         """postProcessing/pmshFoam/summary.json, what the benchmark reads"""
         c = self.case("sphere", refinementLevels=1)
+        started = time.monotonic()
         c.run("pmshFoam")
+        wall = time.monotonic() - started
         cells = cells_in_checkmesh_log(c.check_mesh())
         with open(os.path.join(c.dir, "postProcessing/pmshFoam/summary.json")) as f:
             s = json.load(f)
@@ -88,7 +91,16 @@ class sphere(CaseTest):
         memory = [s["stages"][k]["peakMemoryBytes"] for k in stages]
         self.assertEqual(memory, sorted(memory), "a peak so far cannot fall")
         self.assertEqual(memory[-1], max(s["peakMemoryPerRankBytes"]))
-        self.assertAlmostEqual(s["fineTime"], sum(s["stages"][k]["seconds"] for k in stages[1:6]))
+        # The paper's split that the benchmark reads: coarse mesh, fine mesh
+        # (stages 2-6) and write are disjoint parts of the run, which
+        # pmshFoam's total clock and this test's clock each measure whole;
+        # between the stages there is only logging
+        parts = s["coarseTime"] + s["fineTime"] + s["writeTime"]
+        self.assertLessEqual(parts, s["totalTime"] * (1 + 1e-9), "a stage counted twice")
+        self.assertLessEqual(s["totalTime"], wall)
+        self.assertGreater(parts, 0.9 * s["totalTime"], "a stage left out")
+        self.assertAlmostEqual(s["fineCellsPerSecondPerCore"] * s["fineTime"], cells,
+                               delta=1e-6 * cells)
 
     def test_tutorialAllrunEndsWithMeshOK(self):
         c = self.case("sphere")

@@ -24,30 +24,116 @@ using namespace pmsh::test;
 namespace
 {
 
-//- Worst internal-face non-orthogonality (degrees) of a tet mesh, with
-//  cell centres the mean of the points (as OpenFOAM's for a tet).
-double maxNonOrthogonality(const TetMesh& m)
+//- checkMesh's worst face measures of a tet mesh, computed here apart from
+//  the pass, as OpenFOAM v1912's primitiveMeshTools::faceOrthogonality,
+//  faceSkewness and boundaryFaceSkewness do: non-orthogonality (degrees)
+//  of the faces between two tets, skewness of those and of the boundary
+//  faces. A tet's centre is the mean of its points, as OpenFOAM's.
+struct checkMeshMeasures
 {
-    const tetFaceMatch match = matchTetFaces(m.points.size(), m.tets, {});
-    double worst = 0;
+    double maxNonOrthogonality = 0;
+    double maxInternalSkewness = 0;
+    double maxBoundarySkewness = 0;
+    double maxSkewness() const { return std::max(maxInternalSkewness, maxBoundarySkewness); }
+};
+
+checkMeshMeasures checkMeshMeasuresOf(const TetMesh& m)
+{
+    auto centreOf = [&](const tetVerts& t)
+    {
+        return 0.25*((m.points[t[0]] + m.points[t[1]]) + (m.points[t[2]] + m.points[t[3]]));
+    };
+    // Each face by its sorted points: the tets on it
+    std::map<std::array<label, 3>, std::vector<std::size_t>> faces;
     for (std::size_t t = 0; t < m.tets.size(); ++t)
     {
         for (int k = 0; k < 4; ++k)
         {
-            const faceId other = match.across[4*t + k];
-            if (other == noFace || other/4 < t) continue;
-            const triVerts f = tetFace(m.tets[t], k);
-            const tetVerts& u = m.tets[other/4];
-            const label e = u[3 - int(other % 4)];
-            const faceQuality q = internalFaceQuality
-            (
-                m.points[f[0]], m.points[f[1]], m.points[f[2]],
-                m.points[m.tets[t][3 - k]], m.points[e]
-            );
-            worst = std::max(worst, q.nonOrthogonality);
+            std::array<label, 3> f;
+            for (int i = 0, n = 0; i < 4; ++i)
+            {
+                if (i != k) f[n++] = m.tets[t][i];
+            }
+            std::sort(f.begin(), f.end());
+            faces[f].push_back(t);
         }
     }
+    checkMeshMeasures worst;
+    for (const auto& [f, tets] : faces)
+    {
+        const point3 &a = m.points[f[0]], &b = m.points[f[1]], &c = m.points[f[2]];
+        const point3 fc = (1.0/3.0)*(a + b + c);
+        const point3 ownCc = centreOf(m.tets[tets[0]]);
+        vector3 area = 0.5*cross(b - a, c - a);
+        if (dot(area, fc - ownCc) < 0) area = -1.0*area;    // owner to outside
+        const vector3 Cpf = fc - ownCc;
+        vector3 d;
+        double base;
+        if (tets.size() == 2)
+        {
+            d = centreOf(m.tets[tets[1]]) - ownCc;
+            base = 0.2*std::sqrt(magSqr(d));
+            const double cosine = dot(d, area)/std::sqrt(magSqr(d)*magSqr(area));
+            worst.maxNonOrthogonality = std::max
+            (
+                worst.maxNonOrthogonality,
+                std::acos(std::min(1.0, std::max(-1.0, cosine)))*180/M_PI
+            );
+        }
+        else
+        {
+            const vector3 normal = (1/std::sqrt(magSqr(area)))*area;
+            d = dot(normal, Cpf)*normal;
+            base = 0.4*std::sqrt(magSqr(d));
+        }
+        const vector3 sv = Cpf - (dot(area, Cpf)/dot(area, d))*d;
+        const double magSv = std::sqrt(magSqr(sv));
+        double fd = base;
+        for (const point3* p : {&a, &b, &c})
+        {
+            if (magSv > 0) fd = std::max(fd, std::abs(dot((1/magSv)*sv, *p - fc)));
+        }
+        double& skew = tets.size() == 2 ? worst.maxInternalSkewness : worst.maxBoundarySkewness;
+        skew = std::max(skew, magSv/fd);
+    }
     return worst;
+}
+
+
+//- The faces of the tets on one tet only, outward.
+std::vector<triVerts> boundaryOf(const TetMesh& m)
+{
+    std::map<std::array<label, 3>, std::pair<int, triVerts>> faces;
+    for (const tetVerts& c : m.tets)
+    {
+        for (const triVerts& f : outwardTetFaces(c))
+        {
+            std::array<label, 3> key = f;
+            std::sort(key.begin(), key.end());
+            auto& entry = faces[key];
+            ++entry.first;
+            entry.second = f;
+        }
+    }
+    std::vector<triVerts> triangles;
+    for (const auto& [key, entry] : faces)
+    {
+        if (entry.first == 1) triangles.push_back(entry.second);
+    }
+    return triangles;
+}
+
+
+//- Tets made positive by swapping two points where they are not.
+void orientPositive(TetMesh& m)
+{
+    for (tetVerts& c : m.tets)
+    {
+        if (tetVolume6(m.points[c[0]], m.points[c[1]], m.points[c[2]], m.points[c[3]]) < 0)
+        {
+            std::swap(c[2], c[3]);
+        }
+    }
 }
 
 
@@ -107,29 +193,34 @@ std::vector<point3> cubeCorners()
 } // End anonymous namespace
 
 
-TEST(tetQualityPass, faceMeasuresAsCheckMesh)
+TEST(tetQualityPass, measuresTheWorstFacesAsCheckMesh)
 {
-    const point3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+    // Two tets on the face (a, b, c), their apexes below and above its
+    // centre, the upper one moved sideways by its height: the cell centres
+    // are a quarter of the way to the apexes, so the line between them
+    // leans by atan(1/2) and crosses the face 1/8 off its centre, which
+    // normalised by the face's extent that way (2/3) is a skewness of
+    // 0.1875, twice that moved twice as far (then the worst of all faces)
     const point3 centre{1.0/3, 1.0/3, 0};
+    for (const double sideways : {0.0, 1.0, 2.0})
+    {
+        TetMesh m;
+        m.points =
+        {
+            {0, 0, 0}, {1, 0, 0}, {0, 1, 0},
+            centre + point3{0, 0, -1}, centre + point3{sideways, 0, 1}
+        };
+        m.tets = {{3, 0, 1, 2}, {4, 0, 1, 2}};
+        orientPositive(m);
+        const checkMeshMeasures expected = checkMeshMeasuresOf(m);
+        EXPECT_NEAR(expected.maxNonOrthogonality, std::atan(sideways/2)*180/M_PI, 1e-9);
+        EXPECT_NEAR(expected.maxInternalSkewness, sideways*0.1875, 1e-9);
 
-    // Apexes straight above and below the face centre: orthogonal
-    const faceQuality straight =
-        internalFaceQuality(a, b, c, centre + point3{0, 0, -1}, centre + point3{0, 0, 1});
-    EXPECT_NEAR(straight.nonOrthogonality, 0, 1e-9);
-    EXPECT_NEAR(straight.skewness, 0, 1e-9);
-
-    // The upper apex moved sideways by its height: the cell centres are a
-    // quarter of the way to the apexes, so the line between them leans by
-    // atan(1/2) and crosses the face 1/8 off its centre, which normalised
-    // by the face's extent that way (2/3) is a skewness of 0.1875
-    const faceQuality leaning =
-        internalFaceQuality(a, b, c, centre + point3{0, 0, -1}, centre + point3{1, 0, 1});
-    EXPECT_NEAR(leaning.nonOrthogonality, std::atan(0.5)*180/M_PI, 1e-9);
-    EXPECT_NEAR(leaning.skewness, 0.1875, 1e-9);
-
-    // A boundary face sees the line from its centre to the cell centre
-    const faceQuality boundary = boundaryFaceQuality(a, b, c, centre + point3{1, 0, -1});
-    EXPECT_NEAR(boundary.nonOrthogonality, 45, 1e-9);
+        // The pass's own measures of the mesh it was given
+        const qualityPassStats stats = improveWorstCells(m, 5, boundaryOf(m), {}, 0);
+        EXPECT_NEAR(stats.worstBefore.nonOrthogonality, expected.maxNonOrthogonality, 1e-9);
+        EXPECT_NEAR(stats.worstBefore.skewness, expected.maxSkewness(), 1e-9);
+    }
 }
 
 
@@ -147,13 +238,13 @@ TEST(tetQualityPass, movesABadInteriorPointAndKeepsTheBoundary)
         m.tets.push_back({f[0], f[2], f[1], 8});
     }
     const std::vector<point3> before = m.points;
-    const double worstBefore = maxNonOrthogonality(m);
+    const double worstBefore = checkMeshMeasuresOf(m).maxNonOrthogonality;
 
     const qualityPassStats stats = improveWorstCells(m, 8, triangles, {}, 3);
 
     expectValid(m, before, 8, triangles);
     EXPECT_GT(stats.nMoved, 0);
-    const double worstAfter = maxNonOrthogonality(m);
+    const double worstAfter = checkMeshMeasuresOf(m).maxNonOrthogonality;
     EXPECT_LT(worstAfter, worstBefore - 10) << "from " << worstBefore;
     EXPECT_NEAR(stats.worstBefore.nonOrthogonality, worstBefore, 1e-9);
 }
@@ -183,13 +274,14 @@ TEST(tetQualityPass, flipsAFlatPairIntoThreeTets)
     };
     ASSERT_TRUE(matchTetFaces(5, m.tets, triangles).fits());
     const std::vector<point3> before = m.points;
+    const double skewnessBefore = checkMeshMeasuresOf(m).maxSkewness();
 
     const qualityPassStats stats = improveWorstCells(m, 5, triangles, {}, 1);
 
     expectValid(m, before, 5, triangles);
     EXPECT_EQ(stats.nFlips, 1);
     EXPECT_EQ(m.tets.size(), 3u);
-    EXPECT_LT(stats.worstAfter.skewness, stats.worstBefore.skewness);
+    EXPECT_LT(checkMeshMeasuresOf(m).maxSkewness(), skewnessBefore);
 }
 
 
@@ -208,31 +300,8 @@ TEST(tetQualityPass, removesASliverWithAllItsPointsFixed)
         {0.5, 0.5, 1}, {0.5, 0.5, -1}                   // above, below
     };
     m.tets = {{0, 1, 2, 3}, {4, 0, 1, 2}, {4, 0, 2, 3}, {5, 1, 3, 0}, {5, 1, 3, 2}};
-    for (tetVerts& c : m.tets)
-    {
-        if (tetVolume6(m.points[c[0]], m.points[c[1]], m.points[c[2]], m.points[c[3]]) < 0)
-        {
-            std::swap(c[2], c[3]);
-        }
-    }
-    // The faces on one tet only, outward
-    std::map<std::array<label, 3>, std::pair<int, triVerts>> faces;
-    for (const tetVerts& c : m.tets)
-    {
-        for (const triVerts& f : outwardTetFaces(c))
-        {
-            std::array<label, 3> key = f;
-            std::sort(key.begin(), key.end());
-            auto& entry = faces[key];
-            ++entry.first;
-            entry.second = f;
-        }
-    }
-    std::vector<triVerts> triangles;
-    for (const auto& [key, entry] : faces)
-    {
-        if (entry.first == 1) triangles.push_back(entry.second);
-    }
+    orientPositive(m);
+    const std::vector<triVerts> triangles = boundaryOf(m);
     ASSERT_TRUE(matchTetFaces(6, m.tets, triangles).fits());
     const std::vector<point3> before = m.points;
 
@@ -274,15 +343,17 @@ TEST(tetQualityPass, partitionMeshesGetBetterAndKeepTheirSurface)
 
         p.optimisationSteps = 0;
         TetMesh m = VolumeMesher::New("netgen")->mesh(s.points, s.triangles, p);
-        const double worstBefore = maxNonOrthogonality(m);
+        const checkMeshMeasures before = checkMeshMeasuresOf(m);
         const qualityPassStats stats = improveWorstCells
         (
             m, label(s.points.size()), s.triangles, p.interfaceTriangles, 3
         );
         expectValid(m, s.points, s.points.size(), s.triangles);
         EXPECT_GT(stats.nFlips + stats.nMoved, 0);
-        EXPECT_LT(maxNonOrthogonality(m), worstBefore - 5) << "partition " << part;
-        EXPECT_LE(stats.worstAfter.skewness, stats.worstBefore.skewness);
+        const checkMeshMeasures after = checkMeshMeasuresOf(m);
+        EXPECT_LT(after.maxNonOrthogonality, before.maxNonOrthogonality - 5)
+            << "partition " << part;
+        EXPECT_LE(after.maxSkewness(), before.maxSkewness()) << "partition " << part;
 
         p.optimisationSteps = 3;
         const TetMesh h = VolumeMesher::New("hxt")->mesh(s.points, s.triangles, p);

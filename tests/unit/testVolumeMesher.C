@@ -13,12 +13,11 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <algorithm>
 #include <cstring>
-#include <iostream>
 #include <map>
+#include <set>
 
 using namespace pmsh;
 using namespace pmsh::test;
@@ -95,22 +94,106 @@ TEST(netgenVolumeMesher, coarseSphereBoundary)
 }
 
 
-TEST(netgenVolumeMesher, refinedSurfaceAndSpeed)
+TEST(netgenVolumeMesher, fillsARefinedSphereExactlyWithPositiveTetsOfBoundedShape)
 {
-    // 5120 triangles (icosphere, 4 levels): interior cells follow the
-    // surface size with grading
+    // 5120 triangles (icosphere, 4 levels), graded interior. Checked here
+    // from the points and tets alone, apart from VolumeMesher::mesh's own
+    // contract check.
     const surface s = icosphere(4);
-    auto mesher = VolumeMesher::New("netgen");
     volumeMeshParameters p;
     p.grading = 0.3;
-    const auto start = std::chrono::steady_clock::now();
-    const TetMesh m = mesher->mesh(s.points, s.triangles, p);
-    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cout
-        << "Netgen volume mesh: " << s.triangles.size() << " surface triangles -> "
-        << m.tets.size() << " tets, " << m.points.size() << " points in " << sec
-        << " s (" << m.tets.size()/sec << " tets/s)" << std::endl;
-    EXPECT_GT(m.points.size(), s.points.size());
+    const TetMesh m = VolumeMesher::New("netgen")->mesh(s.points, s.triangles, p);
+
+    ASSERT_GT(m.points.size(), s.points.size()) << "no interior points";
+    for (std::size_t i = 0; i < s.points.size(); ++i)
+    {
+        ASSERT_EQ(m.points[i], s.points[i]) << "surface point " << i;
+    }
+
+    // Positive tets that add up to the volume the surface encloses
+    double enclosed = 0;
+    for (const triVerts& t : s.triangles)
+    {
+        enclosed += dot(s.points[t[0]], cross(s.points[t[1]], s.points[t[2]]))/6;
+    }
+    double filled = 0;
+    for (const tetVerts& t : m.tets)
+    {
+        const point3 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]], &d = m.points[t[3]];
+        const double v = dot(b - a, cross(c - a, d - a))/6;
+        ASSERT_GT(v, 0) << "tet " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3];
+        filled += v;
+    }
+    EXPECT_NEAR(filled, enclosed, 1e-12*enclosed);
+
+    // Every face twice, once from each side, but the surface's triangles:
+    // once, outward
+    std::map<triVerts, int> faces;      // oriented, smallest point first
+    auto rotated = [](const triVerts& f)
+    {
+        const int k = int(std::min_element(f.begin(), f.end()) - f.begin());
+        return triVerts{f[k], f[(k + 1)%3], f[(k + 2)%3]};
+    };
+    for (const tetVerts& t : m.tets)
+    {
+        for (const triVerts& f :
+            {triVerts{t[0], t[2], t[1]}, triVerts{t[0], t[1], t[3]},
+             triVerts{t[0], t[3], t[2]}, triVerts{t[1], t[2], t[3]}})
+        {
+            ++faces[rotated(f)];
+        }
+    }
+    std::set<triVerts> boundary;
+    for (const auto& [f, n] : faces)
+    {
+        ASSERT_EQ(n, 1) << "face used " << n << " times from one side";
+        if (!faces.count(rotated({f[0], f[2], f[1]})))
+        {
+            boundary.insert(f);
+        }
+    }
+    std::size_t notOnTheBoundary = 0;
+    for (const triVerts& t : s.triangles)
+    {
+        notOnTheBoundary += !boundary.count(rotated(t));
+    }
+    EXPECT_EQ(notOnTheBoundary, 0u);
+    EXPECT_EQ(boundary.size(), s.triangles.size());
+
+    // No point left unused
+    std::vector<bool> used(m.points.size(), false);
+    for (const tetVerts& t : m.tets)
+    {
+        for (label p : t) used[p] = true;
+    }
+    EXPECT_EQ(std::count(used.begin(), used.end(), false), 0);
+
+    // Shape: dihedral angles between 10 and 160 degrees (Netgen gives
+    // about 22 and 141 here)
+    double minDihedral = 180, maxDihedral = 0;
+    for (const tetVerts& t : m.tets)
+    {
+        for (int i = 0; i < 4; ++i)
+        {
+            for (int j = i + 1; j < 4; ++j)
+            {
+                // The edge opposite (i, j) and the two faces on it
+                int k = 0;
+                while (k == i || k == j) ++k;
+                int l = 6 - i - j - k;
+                const point3& e0 = m.points[t[k]];
+                const vector3 e = m.points[t[l]] - e0;
+                const vector3 u = m.points[t[i]] - e0, w = m.points[t[j]] - e0;
+                const vector3 nu = cross(e, u), nw = cross(e, w);
+                const double cosAngle = dot(nu, nw)/std::sqrt(magSqr(nu)*magSqr(nw));
+                const double angle = std::acos(std::max(-1.0, std::min(1.0, cosAngle)))*180/M_PI;
+                minDihedral = std::min(minDihedral, angle);
+                maxDihedral = std::max(maxDihedral, angle);
+            }
+        }
+    }
+    EXPECT_GT(minDihedral, 10);
+    EXPECT_LT(maxDihedral, 160);
 }
 
 
