@@ -56,13 +56,24 @@ void pmsh::orderCyclicFaces
     }
     const char* function = "pmsh::orderCyclicFaces";
 
-    // Ids are 1-based: an image's id maps to its first point's
-    std::unordered_map<std::uint32_t, std::uint32_t> toFirst;
-    for (const auto& pair : coarse.periodicPoints)
+    // A face of a second patch is keyed as its image on the first, by
+    // mapping its coarse points through its own pair only: a point on a
+    // cube's edge or corner has an image through every pair it is in.
+    // Ids are 1-based.
+    std::vector<std::unordered_map<std::uint32_t, std::uint32_t>> toFirst
+    (
+        coarse.periodicPatches.size()
+    );
+    for (const periodicPoint& p : coarse.periodicPoints)
     {
-        toFirst[std::uint32_t(pair[1] + 1)] = std::uint32_t(pair[0] + 1);
+        toFirst[p.pair][std::uint32_t(p.image + 1)] = std::uint32_t(p.point + 1);
     }
-    auto key = [&](label pointi)
+    std::vector<label> secondOfPair(mesh.patches.size(), -1);
+    for (std::size_t pair = 0; pair < coarse.periodicPatches.size(); ++pair)
+    {
+        secondOfPair[coarse.periodicPatches[pair].second] = label(pair);
+    }
+    auto key = [&](label pointi, label patchi)
     {
         if
         (
@@ -78,11 +89,16 @@ void pmsh::orderCyclicFaces
             );
         }
         const barycentricId& id = pointIds[pointi];
+        if (secondOfPair[patchi] < 0)
+        {
+            return id;
+        }
+        const auto& map = toFirst[secondOfPair[patchi]];
         std::array<std::uint32_t, 3> v = id.vertex;
         for (int k = 0; k < 3; ++k)
         {
-            const auto it = toFirst.find(v[k]);
-            if (id.weight[k] != 0 && it != toFirst.end())
+            const auto it = map.find(v[k]);
+            if (id.weight[k] != 0 && it != map.end())
             {
                 v[k] = it->second;
             }
@@ -111,7 +127,8 @@ void pmsh::orderCyclicFaces
                 kept[pi].push_back({{}, f, mesh.owner[facei]});
                 continue;
             }
-            cyclicKey k{key(f[0]), key(f[1]), key(f[2])};
+            const label p = label(pi);
+            cyclicKey k{key(f[0], p), key(f[1], p), key(f[2], p)};
             // Start at the point of lowest key, keeping the orientation
             const int first = int(std::min_element(k.begin(), k.end()) - k.begin());
             const triVerts rotated{f[first], f[(first + 1) % 3], f[(first + 2) % 3]};
