@@ -177,7 +177,34 @@ void pmsh::orderCyclicFaces
             imageRank[a.index] = a.imageRank;
         }
     }
-    std::map<std::pair<label, label>, std::vector<boundaryFace>> toRank;
+    // The processorCyclic patches between two ranks in one order on both:
+    // OpenFOAM streams their data to a rank one after the other
+    // (PstreamBuffers), so the k-th of A's to B must be the partner of
+    // the k-th of B's to A. Both order them by the lower rank's cyclic
+    // patch: OpenFOAM's owner ones (lower index than their neighbour)
+    // first, by index, as decomposePar does on the lower rank.
+    std::vector<label> neighbourOf(mesh.patches.size(), -1);
+    for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
+    {
+        for (std::size_t qi = 0; qi < mesh.patches.size(); ++qi)
+        {
+            if
+            (
+                mesh.patches[pi].isCyclic()
+             && mesh.patches[qi].name == mesh.patches[pi].neighbourPatch
+            )
+            {
+                neighbourOf[pi] = label(qi);
+            }
+        }
+    }
+    auto orderBetweenRanks = [&](label imageRank, label pi)
+    {
+        const label lowerRankPatch = myRank < imageRank ? pi : neighbourOf[pi];
+        const bool owner = lowerRankPatch < neighbourOf[lowerRankPatch];
+        return std::make_tuple(imageRank, owner ? 0 : 1, lowerRankPatch, pi);
+    };
+    std::map<std::tuple<label, int, label, label>, std::vector<boundaryFace>> toRank;
     for (std::size_t i = 0; i < cyclicFaces.size(); ++i)
     {
         const auto& [pi, face] = cyclicFaces[i];
@@ -196,7 +223,7 @@ void pmsh::orderCyclicFaces
         }
         else
         {
-            toRank[{imageRank[i], pi}].push_back(face);
+            toRank[orderBetweenRanks(imageRank[i], pi)].push_back(face);
         }
     }
 
@@ -224,11 +251,12 @@ void pmsh::orderCyclicFaces
     }
     for (auto& [where, faces] : toRank)
     {
-        const meshPatch& cyclic = mesh.patches[where.second];
+        const label imageRank = std::get<0>(where);
+        const meshPatch& cyclic = mesh.patches[std::get<3>(where)];
         meshPatch patch;
-        patch.name = processorCyclicPatchName(myRank, where.first, cyclic.name);
+        patch.name = processorCyclicPatchName(myRank, imageRank, cyclic.name);
         patch.type = "processorCyclic";
-        patch.neighbProcNo = where.first;
+        patch.neighbProcNo = imageRank;
         patch.neighbourPatch = cyclic.name;
         patch.separation = cyclic.separation;
         place(patch, faces, true);
