@@ -203,13 +203,16 @@ pmsh::periodicPatchPair patchPairOf
 }
 
 
-//- The translation from pair.first to pair.second, the same for every
-//  point of pair.first (rotations are not supported)
-pmsh::vector3 separationOf
+//- The translation that takes every point of `image` to its image: the
+//  same nonzero vector for all (a rotation's images move by different
+//  vectors; points where the two surfaces meet, e.g. a wedge's axis, are
+//  their own images)
+pmsh::vector3 translationOf
 (
     const pmsh::CoarseMesh& coarse,
-    const pmsh::periodicPatchPair& pair,
-    const std::map<pmsh::label, pmsh::label>& image
+    const std::map<pmsh::label, pmsh::label>& image,
+    const std::string& firstSolid,
+    const std::string& secondSolid
 )
 {
     using namespace pmsh;
@@ -218,33 +221,24 @@ pmsh::vector3 separationOf
     {
         size = std::max(size, std::sqrt(magSqr(p)));
     }
-    bool first = true;
-    vector3 separation{0, 0, 0};
-    for (const coarseBoundaryFace& b : coarse.boundary)
+    const double tolerance = 1e-9*size;
+    const vector3 separation =
+        coarse.points[image.begin()->second] - coarse.points[image.begin()->first];
+    bool translation = std::sqrt(magSqr(separation)) > tolerance;
+    for (const auto& [point, imagePoint] : image)
     {
-        if (b.patch != pair.first)
+        const vector3 d = coarse.points[imagePoint] - coarse.points[point];
+        translation = translation && std::sqrt(magSqr(d - separation)) <= tolerance;
+    }
+    if (!translation)
+    {
+        throw periodicProblem
         {
-            continue;
-        }
-        for (label p : b.v)
-        {
-            const vector3 d = coarse.points[image.at(p)] - coarse.points[p];
-            if (first)
-            {
-                separation = d;
-                first = false;
-            }
-            else if (std::sqrt(magSqr(d - separation)) > 1e-9*size)
-            {
-                throw periodicProblem
-                {
-                    "patches " + coarse.patches[pair.first].name + " and "
-                  + coarse.patches[pair.second].name + " are not a"
-                    " translation of each other (only translational"
-                    " periodicity is supported, not rotational)"
-                };
-            }
-        }
+            firstSolid + " and " + secondSolid + " are not a translation of"
+            " each other (Netgen's images of their points do not all move by"
+            " one vector). Only translational periodic pairs are supported,"
+            " not rotational ones (e.g. the two sides of a wedge)"
+        };
     }
     return separation;
 }
@@ -430,7 +424,20 @@ void pmsh::csgGeometry::setPeriodicPatches
         faceOf[f] = label(b);
     }
 
+    // Faces per surface: on the boundary, and between two regions
+    std::map<label, label> nBoundaryFaces;
+    std::map<label, label> nZoneFaces;
+    for (const coarseBoundaryFace& b : coarse.boundary)
+    {
+        ++nBoundaryFaces[b.surface];
+    }
+    for (const coarseZoneFace& z : coarse.zoneFaces)
+    {
+        ++nZoneFaces[z.surface];
+    }
+
     std::vector<std::string> pairedBy(coarse.patches.size());
+    std::map<label, std::string> statementOfSurface;
     for (const ng::periodicIdentification& identification : identifications)
     {
         const std::string statement =
@@ -438,11 +445,62 @@ void pmsh::csgGeometry::setPeriodicPatches
           + identification.secondSolid + "'";
         try
         {
+            // The cases that cannot be a pair of cyclic patches, named
+            // before Netgen's point pairs are looked at
+            for
+            (
+                const auto& [surface, solid] :
+                {
+                    std::make_pair(identification.firstSurface, identification.firstSolid),
+                    std::make_pair(identification.secondSurface, identification.secondSolid)
+                }
+            )
+            {
+                const auto earlier = statementOfSurface.find(surface);
+                if (earlier != statementOfSurface.end())
+                {
+                    throw periodicProblem
+                    {
+                        "the surface of " + solid + " is in " + earlier->second
+                      + " too. A cyclic patch has one neighbour: a surface"
+                        " can be in one periodic pair only"
+                    };
+                }
+                statementOfSurface[surface] = statement;
+                if (nBoundaryFaces[surface] == 0)
+                {
+                    throw periodicProblem
+                    {
+                        nZoneFaces[surface] > 0
+                      ? "the surface of " + solid + " lies between two"
+                        " regions (top-level solids). Periodic sides must"
+                        " bound the meshed solids, not separate them"
+                      : "the surface of " + solid + " bounds none of the"
+                        " meshed solids"
+                    };
+                }
+            }
+            if (identification.points.empty())
+            {
+                throw periodicProblem
+                {
+                    "Netgen found no point of " + identification.firstSolid
+                  + " whose image is on " + identification.secondSolid
+                  + ": they are not a translation of each other. Only"
+                    " translational periodic pairs are supported, not"
+                    " rotational ones (e.g. the two sides of a wedge)"
+                };
+            }
+
             std::map<label, label> image;
             for (const auto& pair : identification.points)
             {
                 image[pair[0]] = pair[1];
             }
+            const vector3 separation = translationOf
+            (
+                coarse, image, identification.firstSolid, identification.secondSolid
+            );
             periodicPatchPair pp = patchPairOf(coarse, faceOf, image);
             for (const label patch : {pp.first, pp.second})
             {
@@ -458,7 +516,7 @@ void pmsh::csgGeometry::setPeriodicPatches
                 }
                 pairedBy[patch] = statement;
             }
-            pp.separation = separationOf(coarse, pp, image);
+            pp.separation = separation;
             const label pairIndex = label(coarse.periodicPatches.size());
             coarse.periodicPatches.push_back(pp);
             for (const auto& [point, imagePoint] : image)

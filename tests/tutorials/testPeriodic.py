@@ -134,6 +134,25 @@ class periodic(CaseTest):
                 zones = re.findall(r"(?m)^(\w+)\s*\{\s*type\s+cellZone", f.read())
             self.assertEqual(zones, ["matrix", "inner"])
 
+    def test_rotationalPairStopsWithAMessageAndWritesNothing(self):
+        c = self.periodic_case(1)
+        with open(os.path.join(c.dir, "constant", "geometry", "wedge.geo"), "w") as f:
+            f.write("algebraic3d\n"
+                    "solid a = plane (0, 0, 0; 0, -1, 0) -bcname=a;\n"
+                    "solid b = plane (0, 0, 0; -0.5, 0.8660254037844386, 0) -bcname=b;\n"
+                    "solid w = a and b and plane (0, 0, 0; 0, 0, -1)\n"
+                    "    and plane (0, 0, 1; 0, 0, 1) and sphere (0, 0, 0; 1);\n"
+                    "identify periodic a b;\n"
+                    "tlo w;\n")
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/wedge.geo"')
+        code, log = c.run("pmshFoam", check=False)
+        self.assertNotEqual(code, 0)
+        self.assertIn("FOAM FATAL ERROR", log)
+        self.assertRegex(log, r"wedge\.geo\": cannot make cyclic patches of 'identify periodic a b'"
+                              r": a and b are not a translation of each other")
+        self.assertIn("Only translational periodic pairs are supported, not rotational ones", log)
+        self.assertFalse(c.exists("constant/polyMesh"))
+
     def test_cyclicMatchSerialAtEachLevel(self):
         for levels in (0, 1, 2):
             _, boundary = self.mesh(levels, 1)

@@ -1095,6 +1095,70 @@ TEST(csgGeometry, periodicSidesSharingAPatchAreAnErrorAskingForBcnames)
 }
 
 
+TEST(csgGeometry, unsupportedPeriodicPairsAreErrorsNamingTheirCase)
+{
+    const tempDir dir("geometry");
+    const std::string cube =
+        " and plane(0, 0, 0; 0, -1, 0) and plane(1, 1, 1; 0, 1, 0)"
+        " and plane(0, 0, 0; 0, 0, -1) and plane(1, 1, 1; 0, 0, 1)";
+    auto errorFor = [&](const std::string& name, const std::string& text)
+    {
+        const std::string file = dir.file(name, "algebraic3d\n" + text);
+        const auto geometry = Geometry::New(file);
+        const std::string m = errorOf([&]{ geometry->coarseMesh({0.3, 0.3}); });
+        EXPECT_NE(m.find("CSG geometry \"" + file + "\": cannot make cyclic patches of 'identify periodic "), std::string::npos) << m;
+        return m;
+    };
+
+    // Rotational: Netgen pairs only the points on the wedge's axis, each
+    // with itself
+    {
+        const std::string m = errorFor
+        (
+            "wedge.geo",
+            "solid a = plane(0, 0, 0; 0, -1, 0) -bcname=a;\n"
+            "solid b = plane(0, 0, 0; -0.5, 0.8660254037844386, 0) -bcname=b;\n"
+            "solid w = a and b and plane(0, 0, 0; 0, 0, -1) and plane(0, 0, 1; 0, 0, 1)\n"
+            "    and sphere(0, 0, 0; 1);\n"
+            "identify periodic a b;\n"
+            "tlo w;\n"
+        );
+        EXPECT_NE(m.find("'identify periodic a b': a and b are not a translation of each other"), std::string::npos) << m;
+        EXPECT_NE(m.find("Only translational periodic pairs are supported, not rotational ones"), std::string::npos) << m;
+    }
+    // One side in two pairs
+    {
+        const std::string m = errorFor
+        (
+            "twice.geo",
+            "solid left = plane(0, 0, 0; -1, 0, 0) -bcname=left;\n"
+            "solid right = plane(1, 1, 1; 1, 0, 0) -bcname=right;\n"
+            "solid front = plane(0, 0, 0; 0, -1, 0) -bcname=front;\n"
+            "solid cube = left and right and front" + cube + ";\n"
+            "identify periodic left right;\n"
+            "identify periodic left front;\n"
+            "tlo cube;\n"
+        );
+        EXPECT_NE(m.find("'identify periodic left front': the surface of left is in 'identify periodic left right' too"), std::string::npos) << m;
+    }
+    // A side between two regions, not on the boundary
+    {
+        const std::string m = errorFor
+        (
+            "between.geo",
+            "solid l0 = plane(0, 0, 0; -1, 0, 0) -bcname=l0;\n"
+            "solid mid = plane(1, 0, 0; 1, 0, 0);\n"
+            "solid box1 = l0 and mid" + cube + ";\n"
+            "solid box2 = not mid and plane(2, 0, 0; 1, 0, 0)" + cube + ";\n"
+            "identify periodic l0 mid;\n"
+            "tlo box1;\n"
+            "tlo box2;\n"
+        );
+        EXPECT_NE(m.find("'identify periodic l0 mid': the surface of mid lies between two regions"), std::string::npos) << m;
+    }
+}
+
+
 TEST(stlReader, bodyInABoxIsTwoShellsEachPointingOutOfTheFluid)
 {
     const std::string f = testDataDir() + "/geometry/sphereInBox.stl";
