@@ -303,7 +303,10 @@ pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
     for (const ng::boundaryTriangle& b : m.boundary)
     {
         bcDomain.emplace(b.bc, b.domain);
-        bcSurfaces[b.bc].insert(b.surface);
+        if (!m.periodic.empty())
+        {
+            bcSurfaces[b.bc].insert(b.surface);
+        }
     }
     std::map<label, std::string> periodicSolid;
     for (const ng::periodicIdentification& p : m.periodic)
@@ -416,6 +419,10 @@ void pmsh::csgGeometry::setPeriodicPatches
     const std::vector<ng::periodicIdentification>& identifications
 ) const
 {
+    if (identifications.empty())
+    {
+        return;
+    }
     std::map<triVerts, label> faceOf;
     for (std::size_t b = 0; b < coarse.boundary.size(); ++b)
     {
