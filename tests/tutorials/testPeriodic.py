@@ -121,6 +121,11 @@ class periodic(CaseTest):
     def test_fullyPeriodicCubeOnThreeAndFourRanksReconstructs(self):
         self.mesh_pairs("fullyPeriodicCube.geo", 1, 3, self.FULLY_PERIODIC)
         c = self.mesh_pairs("fullyPeriodicCube.geo", 1, 4, self.FULLY_PERIODIC)
+        # Each side has faces whose image is on another rank
+        through = {e["referPatch"] for p in range(4) for _, e in
+                   c.polymesh("processor%d/constant/polyMesh" % p).boundary()
+                   if e["type"] == "processorCyclic"}
+        self.assertEqual(through, {side for pair in self.FULLY_PERIODIC for side in pair[:2]})
         c.run("reconstructParMesh", "-constant")
         self.assertRegex(c.check_mesh(), MATCH)
 
