@@ -12,6 +12,7 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <set>
 
 // * * * * * * * * * * * * * * * Local helpers  * * * * * * * * * * * * * * //
 
@@ -95,6 +96,154 @@ pmsh::ng::csgModel* openModel(const std::string& fileName)
     }
 }
 
+//- Why a periodic identification cannot become a pair of cyclic patches
+//  (the caller names the file and the statement)
+struct periodicProblem
+{
+    std::string why;
+};
+
+
+//- The patch pair of one periodic identification, whose point pairs are
+//  `image` (a point of the first surface to its image): every boundary
+//  face whose points all have images has its image on the boundary, all
+//  those faces make one patch, their images another, and nothing else is
+//  in either. Separation not set.
+pmsh::periodicPatchPair patchPairOf
+(
+    const pmsh::CoarseMesh& coarse,
+    const std::map<pmsh::triVerts, pmsh::label>& faceOf,
+    const std::map<pmsh::label, pmsh::label>& image
+)
+{
+    using namespace pmsh;
+    std::map<std::pair<label, label>, label> patchPairs;
+    for (const coarseBoundaryFace& b : coarse.boundary)
+    {
+        triVerts f;
+        bool mapped = true;
+        for (int k = 0; k < 3 && mapped; ++k)
+        {
+            const auto it = image.find(b.v[k]);
+            mapped = it != image.end();
+            f[k] = mapped ? it->second : -1;
+        }
+        if (!mapped)
+        {
+            continue;
+        }
+        std::sort(f.begin(), f.end());
+        const auto it = faceOf.find(f);
+        if (it == faceOf.end())
+        {
+            throw periodicProblem
+            {
+                "a face of patch " + coarse.patches[b.patch].name
+              + " has no image on the boundary. The two surfaces must be"
+                " the same shape, one a translation of the other"
+            };
+        }
+        const label other = coarse.boundary[it->second].patch;
+        if (other == b.patch)
+        {
+            throw periodicProblem
+            {
+                "both surfaces are in patch " + coarse.patches[b.patch].name
+              + ". Give each its own -bcname"
+            };
+        }
+        ++patchPairs[{b.patch, other}];
+    }
+    if (patchPairs.empty())
+    {
+        throw periodicProblem
+        {
+            "none of its faces is on the boundary with its image. Both"
+            " surfaces must bound the meshed solids (not lie between two"
+            " of them), one a translation of the other"
+        };
+    }
+    if (patchPairs.size() > 1)
+    {
+        std::string names;
+        for (const auto& [pp, n] : patchPairs)
+        {
+            names += (names.empty() ? "" : ", ") + coarse.patches[pp.first].name
+              + " -> " + coarse.patches[pp.second].name;
+        }
+        throw periodicProblem
+        {
+            "its faces and their images are in several pairs of patches ("
+          + names + "). Give each of its two surfaces its own -bcname"
+        };
+    }
+
+    const auto& [pp, nFaces] = *patchPairs.begin();
+    for (const label patch : {pp.first, pp.second})
+    {
+        label nPatchFaces = 0;
+        for (const coarseBoundaryFace& b : coarse.boundary)
+        {
+            nPatchFaces += b.patch == patch;
+        }
+        if (nPatchFaces != nFaces)
+        {
+            throw periodicProblem
+            {
+                "patch " + coarse.patches[patch].name + " has "
+              + std::to_string(nPatchFaces) + " faces, of which "
+              + std::to_string(nFaces) + " are paired with patch "
+              + coarse.patches[patch == pp.first ? pp.second : pp.first].name
+              + "'s. Give each periodic surface its own -bcname, and"
+                " nothing else that name"
+            };
+        }
+    }
+    return {pp.first, pp.second, {0, 0, 0}};
+}
+
+
+//- The translation that takes every point of `image` to its image: the
+//  same nonzero vector for all (a rotation's images move by different
+//  vectors; points where the two surfaces meet, e.g. a wedge's axis, are
+//  their own images)
+pmsh::vector3 translationOf
+(
+    const pmsh::CoarseMesh& coarse,
+    const std::map<pmsh::label, pmsh::label>& image,
+    const std::string& firstSolid,
+    const std::string& secondSolid
+)
+{
+    using namespace pmsh;
+    double size = 1;
+    for (const point3& p : coarse.points)
+    {
+        size = std::max(size, std::sqrt(magSqr(p)));
+    }
+    const double tolerance = 1e-9*size;
+    const vector3 separation =
+        coarse.points[image.begin()->second] - coarse.points[image.begin()->first];
+    bool translation = std::sqrt(magSqr(separation)) > tolerance;
+    for (const auto& [point, imagePoint] : image)
+    {
+        const vector3 d = coarse.points[imagePoint] - coarse.points[point];
+        translation = translation && std::sqrt(magSqr(d - separation)) <= tolerance;
+    }
+    if (!translation)
+    {
+        throw periodicProblem
+        {
+            firstSolid + " and " + secondSolid + " are not a translation of"
+            " each other (Netgen's images of their points do not all move by"
+            " one vector). Only translational periodic pairs are supported,"
+            " not rotational ones (e.g. the two sides of a wedge)"
+        };
+    }
+    return separation;
+}
+
+
 } // End anonymous namespace
 
 
@@ -147,17 +296,36 @@ pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
     // top-level solid it bounds, so that the surfaces of one solid without
     // a bcname share one patch ("default" is Netgen's name for "none
     // given"; patch<bc> only if the solid has no name either)
+    // A side of a periodic pair without a bcname is named after its solid
+    // as 'identify periodic' names it: each side needs a patch of its own
     std::map<label, label> bcDomain;
+    std::map<label, std::set<label>> bcSurfaces;
     for (const ng::boundaryTriangle& b : m.boundary)
     {
         bcDomain.emplace(b.bc, b.domain);
+        if (!m.periodic.empty())
+        {
+            bcSurfaces[b.bc].insert(b.surface);
+        }
+    }
+    std::map<label, std::string> periodicSolid;
+    for (const ng::periodicIdentification& p : m.periodic)
+    {
+        periodicSolid[p.firstSurface] = p.firstSolid;
+        periodicSolid[p.secondSurface] = p.secondSolid;
     }
     std::map<label, std::string> bcPatchName;
     for (const auto& [bc, name] : m.bcNames)
     {
+        const std::set<label>& surfaces = bcSurfaces[bc];
+        const auto periodic =
+            surfaces.size() == 1
+          ? periodicSolid.find(*surfaces.begin()) : periodicSolid.end();
         const std::string& solid = m.domainNames[bcDomain[bc]];
         bcPatchName[bc] =
             !name.empty() && name != "default" ? name
+          : periodic != periodicSolid.end() && !periodic->second.empty()
+          ? periodic->second
           : !solid.empty() ? solid
           : "patch" + std::to_string(bc);
     }
@@ -240,7 +408,7 @@ pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
             "pmsh::csgGeometry::netgenMesh"
         );
     }
-    setPeriodicPatches(coarse, m.periodicPoints);
+    setPeriodicPatches(coarse, m.periodic);
     return coarse;
 }
 
@@ -248,29 +416,12 @@ pmsh::CoarseMesh pmsh::csgGeometry::netgenMesh
 void pmsh::csgGeometry::setPeriodicPatches
 (
     CoarseMesh& coarse,
-    const std::vector<std::array<label, 2>>& pairs
+    const std::vector<ng::periodicIdentification>& identifications
 ) const
 {
-    if (pairs.empty())
+    if (identifications.empty())
     {
         return;
-    }
-    const char* function = "pmsh::csgGeometry::setPeriodicPatches";
-    auto cannot = [&](const std::string& why)
-    {
-        return FatalError
-        (
-            msg()
-                << "CSG geometry \"" << fileName_ << "\": cannot make cyclic"
-                << " patches of its 'identify periodic' surfaces: " << why,
-            function
-        );
-    };
-
-    std::map<label, label> image;
-    for (const auto& pair : pairs)
-    {
-        image[pair[0]] = pair[1];
     }
     std::map<triVerts, label> faceOf;
     for (std::size_t b = 0; b < coarse.boundary.size(); ++b)
@@ -280,104 +431,118 @@ void pmsh::csgGeometry::setPeriodicPatches
         faceOf[f] = label(b);
     }
 
-    // Every boundary face whose points all have images has its image on
-    // the boundary: the pair of patches they are on is periodic
-    std::map<std::pair<label, label>, label> patchPairs;
-    std::vector<label> pairedFaces(coarse.patches.size(), 0);
+    // Faces per surface: on the boundary, and between two regions
+    std::map<label, label> nBoundaryFaces;
+    std::map<label, label> nZoneFaces;
     for (const coarseBoundaryFace& b : coarse.boundary)
     {
-        triVerts f;
-        bool mapped = true;
-        for (int k = 0; k < 3; ++k)
-        {
-            const auto it = image.find(b.v[k]);
-            mapped = mapped && it != image.end();
-            f[k] = mapped ? it->second : -1;
-        }
-        if (!mapped)
-        {
-            continue;
-        }
-        std::sort(f.begin(), f.end());
-        const auto it = faceOf.find(f);
-        if (it == faceOf.end())
-        {
-            throw cannot
-            (
-                "a face of patch " + coarse.patches[b.patch].name
-              + " has no image on the boundary"
-            );
-        }
-        const label other = coarse.boundary[it->second].patch;
-        if (other == b.patch)
-        {
-            throw cannot
-            (
-                "both surfaces are in patch " + coarse.patches[b.patch].name
-              + ". Give each its own -bcname"
-            );
-        }
-        ++patchPairs[{b.patch, other}];
-        ++pairedFaces[b.patch];
+        ++nBoundaryFaces[b.surface];
+    }
+    for (const coarseZoneFace& z : coarse.zoneFaces)
+    {
+        ++nZoneFaces[z.surface];
     }
 
-    for (const auto& [pp, nFaces] : patchPairs)
+    std::vector<std::string> pairedBy(coarse.patches.size());
+    std::map<label, std::string> statementOfSurface;
+    for (const ng::periodicIdentification& identification : identifications)
     {
-        label nPatchFaces = 0;
-        for (const coarseBoundaryFace& b : coarse.boundary)
+        const std::string statement =
+            "'identify periodic " + identification.firstSolid + " "
+          + identification.secondSolid + "'";
+        try
         {
-            nPatchFaces += b.patch == pp.first;
-        }
-        if (nFaces != nPatchFaces || pairedFaces[pp.first] != nFaces)
-        {
-            throw cannot
+            // The cases that cannot be a pair of cyclic patches, named
+            // before Netgen's point pairs are looked at
+            for
             (
-                "patch " + coarse.patches[pp.first].name + " has "
-              + std::to_string(nPatchFaces) + " faces, of which "
-              + std::to_string(nFaces) + " are images of patch "
-              + coarse.patches[pp.second].name + "'s. Give each periodic"
-                " surface its own -bcname, and nothing else that name"
+                const auto& [surface, solid] :
+                {
+                    std::make_pair(identification.firstSurface, identification.firstSolid),
+                    std::make_pair(identification.secondSurface, identification.secondSolid)
+                }
+            )
+            {
+                const auto earlier = statementOfSurface.find(surface);
+                if (earlier != statementOfSurface.end())
+                {
+                    throw periodicProblem
+                    {
+                        "the surface of " + solid + " is in " + earlier->second
+                      + " too. A cyclic patch has one neighbour: a surface"
+                        " can be in one periodic pair only"
+                    };
+                }
+                statementOfSurface[surface] = statement;
+                if (nBoundaryFaces[surface] == 0)
+                {
+                    throw periodicProblem
+                    {
+                        nZoneFaces[surface] > 0
+                      ? "the surface of " + solid + " lies between two"
+                        " regions (top-level solids). Periodic sides must"
+                        " bound the meshed solids, not separate them"
+                      : "the surface of " + solid + " bounds none of the"
+                        " meshed solids"
+                    };
+                }
+            }
+            if (identification.points.empty())
+            {
+                throw periodicProblem
+                {
+                    "Netgen found no point of " + identification.firstSolid
+                  + " whose image is on " + identification.secondSolid
+                  + ": they are not a translation of each other. Only"
+                    " translational periodic pairs are supported, not"
+                    " rotational ones (e.g. the two sides of a wedge)"
+                };
+            }
+
+            std::map<label, label> image;
+            for (const auto& pair : identification.points)
+            {
+                image[pair[0]] = pair[1];
+            }
+            const vector3 separation = translationOf
+            (
+                coarse, image, identification.firstSolid, identification.secondSolid
+            );
+            periodicPatchPair pp = patchPairOf(coarse, faceOf, image);
+            for (const label patch : {pp.first, pp.second})
+            {
+                if (!pairedBy[patch].empty())
+                {
+                    throw periodicProblem
+                    {
+                        "patch " + coarse.patches[patch].name + " is in "
+                      + pairedBy[patch] + " too. A cyclic patch has one"
+                        " neighbour: a surface can be in one periodic pair"
+                        " only (not supported: one side paired with two)"
+                    };
+                }
+                pairedBy[patch] = statement;
+            }
+            pp.separation = separation;
+            const label pairIndex = label(coarse.periodicPatches.size());
+            coarse.periodicPatches.push_back(pp);
+            for (const auto& [point, imagePoint] : image)
+            {
+                coarse.periodicPoints.push_back({pairIndex, point, imagePoint});
+            }
+        }
+        catch (const periodicProblem& problem)
+        {
+            throw FatalError
+            (
+                msg()
+                    << "CSG geometry \"" << fileName_ << "\": cannot make"
+                    << " cyclic patches of " << statement << ": "
+                    << problem.why,
+                "pmsh::csgGeometry::setPeriodicPatches"
             );
         }
-        coarse.periodicPatches.push_back({pp.first, pp.second, {0, 0, 0}});
     }
-
-    // A translation, the same for every point (rotations are not supported)
-    double size = 0;
-    for (const point3& p : coarse.points)
-    {
-        size = std::max(size, std::sqrt(magSqr(p)));
-    }
-    for (periodicPatchPair& pp : coarse.periodicPatches)
-    {
-        bool first = true;
-        for (const coarseBoundaryFace& b : coarse.boundary)
-        {
-            if (b.patch != pp.first)
-            {
-                continue;
-            }
-            for (label p : b.v)
-            {
-                const vector3 d = coarse.points[image.at(p)] - coarse.points[p];
-                if (first)
-                {
-                    pp.separation = d;
-                    first = false;
-                }
-                else if (std::sqrt(magSqr(d - pp.separation)) > 1e-9*std::max(size, 1.0))
-                {
-                    throw cannot
-                    (
-                        "patches " + coarse.patches[pp.first].name + " and "
-                      + coarse.patches[pp.second].name + " are not a translation"
-                        " of each other (only translations are supported)"
-                    );
-                }
-            }
-        }
-    }
-    coarse.periodicPoints = pairs;
 }
 
 

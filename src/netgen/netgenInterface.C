@@ -346,9 +346,12 @@ void compactPoints(pmsh::ng::volumeMesh& m)
             }
         }
     }
-    for (auto& pair : m.periodicPoints)
+    for (auto& identification : m.periodic)
     {
-        pair = {newIndex[pair[0]], newIndex[pair[1]]};
+        for (auto& pair : identification.points)
+        {
+            pair = {newIndex[pair[0]], newIndex[pair[1]]};
+        }
     }
     m.points = std::move(points);
 }
@@ -614,6 +617,79 @@ void restrictLocalSizes(netgen::Mesh& mesh, const pmsh::ng::meshParameters& p)
             );
         }
     }
+}
+
+
+//- The 'identify periodic' statements of g and Netgen's point pairs of
+//  each in mesh. Quirks: the identifications keep their surfaces private;
+//  GetData prints "periodic <surface> <surface>" with Netgen's surface
+//  names (nnsurfN), and the parser took each solid's first surface. Mesh
+//  identification numbers are the geometry's indices + 1.
+std::vector<pmsh::ng::periodicIdentification> periodicIdentifications
+(
+    const netgen::CSGeometry& g,
+    netgen::Mesh& mesh
+)
+{
+    auto surfaceIndex = [&](const std::string& name)
+    {
+        const netgen::Surface* surface = g.GetSurface(name.c_str());
+        for (int s = 0; surface && s < g.GetNSurf(); ++s)
+        {
+            if (g.GetSurface(s) == surface)
+            {
+                return label(g.GetSurfaceClassRepresentant(s));
+            }
+        }
+        return label(-1);
+    };
+    // The solid of a surface: one of that surface alone, as 'identify'
+    // names them (solid left = plane(...);)
+    auto solidName = [&](label surface)
+    {
+        for (int i = 0; i < g.GetNSolids(); ++i)
+        {
+            netgen::Array<int> surfaces;
+            g.GetSolid(i)->GetSurfaceIndices(surfaces);
+            if
+            (
+                surfaces.Size() == 1
+             && g.GetSurfaceClassRepresentant(surfaces[0]) == surface
+            )
+            {
+                return std::string(g.GetSolid(i)->Name());
+            }
+        }
+        return std::string();
+    };
+
+    std::vector<ng::periodicIdentification> result;
+    netgen::Identifications& identifications = mesh.GetIdentifications();
+    for (int i = 0; i < g.GetNIdentifications(); ++i)
+    {
+        std::ostringstream data;
+        g.identifications[i]->GetData(data);
+        std::istringstream words(data.str());
+        std::string type, first, second;
+        words >> type >> first >> second;
+        if (type != "periodic")
+        {
+            continue;
+        }
+        ng::periodicIdentification p;
+        p.firstSurface = surfaceIndex(first);
+        p.secondSurface = surfaceIndex(second);
+        p.firstSolid = solidName(p.firstSurface);
+        p.secondSolid = solidName(p.secondSurface);
+        netgen::Array<netgen::INDEX_2> pairs;
+        identifications.GetPairs(i + 1, pairs);
+        for (std::size_t k = 0; k < pairs.Size(); ++k)
+        {
+            p.points.push_back({label(pairs[k].I1()) - 1, label(pairs[k].I2()) - 1});
+        }
+        result.push_back(std::move(p));
+    }
+    return result;
 }
 
 } // End anonymous namespace
@@ -938,24 +1014,7 @@ pmsh::ng::volumeMesh pmsh::ng::csgModel::generateMesh
 
     volumeMesh m = convertMesh(*mesh, what);
 
-    // The point pairs of every periodic identification: Netgen meshed the
-    // two surfaces alike (its IdentifyFaces / BuildSurfaceElements), each
-    // point of the first mapped to one of the second
-    netgen::Identifications& identifications = mesh->GetIdentifications();
-    for (int nr = 1; nr <= identifications.GetMaxNr(); ++nr)
-    {
-        if (identifications.GetType(nr) != netgen::Identifications::PERIODIC)
-        {
-            continue;
-        }
-        netgen::Array<netgen::INDEX_2> pairs;
-        identifications.GetPairs(nr, pairs);
-        for (std::size_t i = 0; i < pairs.Size(); ++i)
-        {
-            m.periodicPoints.push_back
-            ({label(pairs[i].I1()) - 1, label(pairs[i].I2()) - 1});
-        }
-    }
+    m.periodic = periodicIdentifications(*impl_->geometry, *mesh);
 
     compactPoints(m);
     if (!parameters.surfaceOnly)

@@ -56,13 +56,24 @@ void pmsh::orderCyclicFaces
     }
     const char* function = "pmsh::orderCyclicFaces";
 
-    // Ids are 1-based: an image's id maps to its first point's
-    std::unordered_map<std::uint32_t, std::uint32_t> toFirst;
-    for (const auto& pair : coarse.periodicPoints)
+    // A face of a second patch is keyed as its image on the first, by
+    // mapping its coarse points through its own pair only: a point on a
+    // cube's edge or corner has an image through every pair it is in.
+    // Ids are 1-based.
+    std::vector<std::unordered_map<std::uint32_t, std::uint32_t>> toFirst
+    (
+        coarse.periodicPatches.size()
+    );
+    for (const periodicPoint& p : coarse.periodicPoints)
     {
-        toFirst[std::uint32_t(pair[1] + 1)] = std::uint32_t(pair[0] + 1);
+        toFirst[p.pair][std::uint32_t(p.image + 1)] = std::uint32_t(p.point + 1);
     }
-    auto key = [&](label pointi)
+    std::vector<label> secondOfPair(mesh.patches.size(), -1);
+    for (std::size_t pair = 0; pair < coarse.periodicPatches.size(); ++pair)
+    {
+        secondOfPair[coarse.periodicPatches[pair].second] = label(pair);
+    }
+    auto key = [&](label pointi, label patchi)
     {
         if
         (
@@ -78,11 +89,16 @@ void pmsh::orderCyclicFaces
             );
         }
         const barycentricId& id = pointIds[pointi];
+        if (secondOfPair[patchi] < 0)
+        {
+            return id;
+        }
+        const auto& map = toFirst[secondOfPair[patchi]];
         std::array<std::uint32_t, 3> v = id.vertex;
         for (int k = 0; k < 3; ++k)
         {
-            const auto it = toFirst.find(v[k]);
-            if (id.weight[k] != 0 && it != toFirst.end())
+            const auto it = map.find(v[k]);
+            if (id.weight[k] != 0 && it != map.end())
             {
                 v[k] = it->second;
             }
@@ -111,7 +127,8 @@ void pmsh::orderCyclicFaces
                 kept[pi].push_back({{}, f, mesh.owner[facei]});
                 continue;
             }
-            cyclicKey k{key(f[0]), key(f[1]), key(f[2])};
+            const label p = label(pi);
+            cyclicKey k{key(f[0], p), key(f[1], p), key(f[2], p)};
             // Start at the point of lowest key, keeping the orientation
             const int first = int(std::min_element(k.begin(), k.end()) - k.begin());
             const triVerts rotated{f[first], f[(first + 1) % 3], f[(first + 2) % 3]};
@@ -160,7 +177,34 @@ void pmsh::orderCyclicFaces
             imageRank[a.index] = a.imageRank;
         }
     }
-    std::map<std::pair<label, label>, std::vector<boundaryFace>> toRank;
+    // The processorCyclic patches between two ranks in one order on both:
+    // OpenFOAM streams their data to a rank one after the other
+    // (PstreamBuffers), so the k-th of A's to B must be the partner of
+    // the k-th of B's to A. Both order them by the lower rank's cyclic
+    // patch: OpenFOAM's owner ones (lower index than their neighbour)
+    // first, by index, as decomposePar does on the lower rank.
+    std::vector<label> neighbourOf(mesh.patches.size(), -1);
+    for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
+    {
+        for (std::size_t qi = 0; qi < mesh.patches.size(); ++qi)
+        {
+            if
+            (
+                mesh.patches[pi].isCyclic()
+             && mesh.patches[qi].name == mesh.patches[pi].neighbourPatch
+            )
+            {
+                neighbourOf[pi] = label(qi);
+            }
+        }
+    }
+    auto orderBetweenRanks = [&](label imageRank, label pi)
+    {
+        const label lowerRankPatch = myRank < imageRank ? pi : neighbourOf[pi];
+        const bool owner = lowerRankPatch < neighbourOf[lowerRankPatch];
+        return std::make_tuple(imageRank, owner ? 0 : 1, lowerRankPatch, pi);
+    };
+    std::map<std::tuple<label, int, label, label>, std::vector<boundaryFace>> toRank;
     for (std::size_t i = 0; i < cyclicFaces.size(); ++i)
     {
         const auto& [pi, face] = cyclicFaces[i];
@@ -179,7 +223,7 @@ void pmsh::orderCyclicFaces
         }
         else
         {
-            toRank[{imageRank[i], pi}].push_back(face);
+            toRank[orderBetweenRanks(imageRank[i], pi)].push_back(face);
         }
     }
 
@@ -207,11 +251,12 @@ void pmsh::orderCyclicFaces
     }
     for (auto& [where, faces] : toRank)
     {
-        const meshPatch& cyclic = mesh.patches[where.second];
+        const label imageRank = std::get<0>(where);
+        const meshPatch& cyclic = mesh.patches[std::get<3>(where)];
         meshPatch patch;
-        patch.name = processorCyclicPatchName(myRank, where.first, cyclic.name);
+        patch.name = processorCyclicPatchName(myRank, imageRank, cyclic.name);
         patch.type = "processorCyclic";
-        patch.neighbProcNo = where.first;
+        patch.neighbProcNo = imageRank;
         patch.neighbourPatch = cyclic.name;
         patch.separation = cyclic.separation;
         place(patch, faces, true);

@@ -885,17 +885,25 @@ TEST(csgGeometry, aBodyInABoxKeepsItsBcNameAndTheRestTakesTheSolidsName)
 namespace
 {
 
-// Netgen's periodic cube, the sides z = 0 and z = 1 paired, named or not
-std::string periodicCube(const tempDir& dir, bool named)
+// Netgen's periodic cube, the sides z = 0 and z = 1 paired, with the
+// bcnames given (none if empty)
+std::string periodicCube
+(
+    const tempDir& dir,
+    const std::string& firstName,
+    const std::string& secondName
+)
 {
-    const std::string bc1 = named ? " -bcname=bottom" : "";
-    const std::string bc2 = named ? " -bcname=top" : "";
+    auto bc = [](const std::string& name)
+    {
+        return name.empty() ? std::string() : " -bcname=" + name;
+    };
     return dir.file
     (
         "periodic.geo",
         "algebraic3d\n"
-        "solid p1 = plane(0, 0, 0; 0, 0, -1)" + bc1 + ";\n"
-        "solid p2 = plane(1, 1, 1; 0, 0, 1)" + bc2 + ";\n"
+        "solid p1 = plane(0, 0, 0; 0, 0, -1)" + bc(firstName) + ";\n"
+        "solid p2 = plane(1, 1, 1; 0, 0, 1)" + bc(secondName) + ";\n"
         "solid cube = plane(0, 0, 0; 0, -1, 0) and plane(0, 0, 0; -1, 0, 0)\n"
         "    and plane(1, 1, 1; 0, 1, 0) and plane(1, 1, 1; 1, 0, 0)\n"
         "    and p1 and p2;\n"
@@ -904,13 +912,86 @@ std::string periodicCube(const tempDir& dir, bool named)
     );
 }
 
+
+// The first and second patch names of every periodic pair
+std::vector<std::pair<std::string, std::string>> periodicPatchNames
+(
+    const CoarseMesh& m
+)
+{
+    std::vector<std::pair<std::string, std::string>> names;
+    for (const periodicPatchPair& pp : m.periodicPatches)
+    {
+        names.push_back({m.patches[pp.first].name, m.patches[pp.second].name});
+    }
+    return names;
+}
+
+
+// Every pair's sides are images of each other through that pair's points
+// alone: each face of the first patch, mapped point by point, is a face
+// of the second, each point moved by the pair's separation, and the two
+// patches have as many faces. Returns the pairs each point is a first
+// point of.
+std::map<label, std::set<label>> expectPeriodicImages(const CoarseMesh& m)
+{
+    std::vector<std::map<label, label>> image(m.periodicPatches.size());
+    std::map<label, std::set<label>> pairsOfPoint;
+    for (const periodicPoint& p : m.periodicPoints)
+    {
+        EXPECT_TRUE(image.at(p.pair).emplace(p.point, p.image).second)
+            << "point " << p.point << " has two images in pair " << p.pair;
+        pairsOfPoint[p.point].insert(p.pair);
+    }
+    for (std::size_t pair = 0; pair < m.periodicPatches.size(); ++pair)
+    {
+        const periodicPatchPair& pp = m.periodicPatches[pair];
+        std::set<triVerts> second;
+        label nFirst = 0;
+        for (const coarseBoundaryFace& b : m.boundary)
+        {
+            triVerts f = b.v;
+            std::sort(f.begin(), f.end());
+            if (b.patch == pp.second) second.insert(f);
+            nFirst += b.patch == pp.first;
+        }
+        EXPECT_GT(nFirst, 1);
+        EXPECT_EQ(label(second.size()), nFirst) << m.patches[pp.first].name;
+        for (const coarseBoundaryFace& b : m.boundary)
+        {
+            if (b.patch != pp.first) continue;
+            triVerts f;
+            for (int k = 0; k < 3; ++k)
+            {
+                const auto it = image[pair].find(b.v[k]);
+                f[k] = it == image[pair].end() ? -1 : it->second;
+                EXPECT_GE(f[k], 0)
+                    << "point " << b.v[k] << " of patch " << m.patches[pp.first].name
+                    << " has no image";
+                if (f[k] < 0) continue;
+                for (int d = 0; d < 3; ++d)
+                {
+                    EXPECT_NEAR
+                    (
+                        m.points[f[k]][d] - m.points[b.v[k]][d], pp.separation[d], 1e-9
+                    );
+                }
+            }
+            std::sort(f.begin(), f.end());
+            EXPECT_EQ(second.count(f), 1u) << m.patches[pp.first].name;
+        }
+    }
+    return pairsOfPoint;
+}
+
 } // End anonymous namespace
 
 
 TEST(csgGeometry, periodicSidesAreImagesOfEachOtherByOneTranslation)
 {
     const tempDir dir("geometry");
-    const CoarseMesh m = Geometry::New(periodicCube(dir, true))->coarseMesh({0.3, 0.3});
+    const CoarseMesh m =
+        Geometry::New(periodicCube(dir, "bottom", "top"))->coarseMesh({0.3, 0.3});
     checkCoarseMesh(m);
     ASSERT_EQ(m.periodicPatches.size(), 1u);
     const periodicPatchPair& pp = m.periodicPatches[0];
@@ -919,28 +1000,84 @@ TEST(csgGeometry, periodicSidesAreImagesOfEachOtherByOneTranslation)
     EXPECT_NEAR(pp.separation[0], 0, 1e-12);
     EXPECT_NEAR(pp.separation[1], 0, 1e-12);
     EXPECT_NEAR(pp.separation[2], 1, 1e-12);
+    expectPeriodicImages(m);
+}
 
-    // Every face of the first side has its image among the second's faces
-    std::map<label, label> image;
-    for (const auto& pair : m.periodicPoints) image[pair[0]] = pair[1];
-    std::set<triVerts> second;
-    label nFirst = 0;
+
+TEST(csgGeometry, periodicCubeSidesMeetAtEdgesAndCornersEachMappedThroughItsOwnPair)
+{
+    // Three pairs touching along the cube's edges: a point on an edge is
+    // in two pairs, a corner in three, with a different image in each
+    const CoarseMesh m =
+        Geometry::New(testDataDir() + "/geometry/fullyPeriodicCube.geo")
+            ->coarseMesh({0.3, 0.3});
+    checkCoarseMesh(m);
+    EXPECT_EQ
+    (
+        periodicPatchNames(m),
+        (std::vector<std::pair<std::string, std::string>>
+        {{"left", "right"}, {"front", "back"}, {"bottom", "top"}})
+    );
+    for (std::size_t pair = 0; pair < 3; ++pair)
+    {
+        for (std::size_t d = 0; d < 3; ++d)
+        {
+            EXPECT_NEAR(m.periodicPatches[pair].separation[d], d == pair ? 1 : 0, 1e-12);
+        }
+    }
+    const std::map<label, std::set<label>> pairsOfPoint = expectPeriodicImages(m);
+    label origin = -1;
+    for (label p = 0; p < m.nPoints(); ++p)
+    {
+        if (magSqr(m.points[p]) < 1e-20) origin = p;
+    }
+    ASSERT_GE(origin, 0);
+    EXPECT_EQ(pairsOfPoint.at(origin), (std::set<label>{0, 1, 2}));
+    label nOnEdges = 0;
+    for (const auto& [point, pairs] : pairsOfPoint)
+    {
+        nOnEdges += pairs.size() == 2;
+    }
+    EXPECT_GT(nOnEdges, 3);
+}
+
+
+TEST(csgGeometry, netgensPeriodExampleHasTwoRegionsAndThreePairs)
+{
+    // Netgen's tutorials/period.geo: no bcnames, so each side is named
+    // after its solid; both regions reach the sides the cylinders cross
+    const CoarseMesh m =
+        Geometry::New(testDataDir() + "/geometry/period.geo")->coarseMesh({0.3, 0.3});
+    checkCoarseMesh(m);
+    EXPECT_EQ(m.zones, (std::vector<std::string>{"matrix", "inner"}));
+    EXPECT_EQ
+    (
+        periodicPatchNames(m),
+        (std::vector<std::pair<std::string, std::string>>
+        {{"p1", "p2"}, {"p3", "p4"}, {"p5", "p6"}})
+    );
+    expectPeriodicImages(m);
+    std::map<std::string, std::set<label>> zonesOfPatch;
     for (const coarseBoundaryFace& b : m.boundary)
     {
-        triVerts f = b.v;
-        std::sort(f.begin(), f.end());
-        if (b.patch == pp.second) second.insert(f);
-        nFirst += b.patch == pp.first;
+        zonesOfPatch[m.patches[b.patch].name].insert(b.zone);
     }
-    ASSERT_GT(nFirst, 1);
-    EXPECT_EQ(label(second.size()), nFirst);
-    for (const coarseBoundaryFace& b : m.boundary)
+    for (const std::string side : {"p1", "p2", "p5", "p6"})
     {
-        if (b.patch != pp.first) continue;
-        triVerts f{image.at(b.v[0]), image.at(b.v[1]), image.at(b.v[2])};
-        std::sort(f.begin(), f.end());
-        EXPECT_EQ(second.count(f), 1u);
+        EXPECT_EQ(zonesOfPatch[side], (std::set<label>{0, 1})) << side;
     }
+}
+
+
+TEST(csgGeometry, periodicSidesWithoutBcnamesAreNamedAfterTheirSolids)
+{
+    const tempDir dir("geometry");
+    const CoarseMesh m = Geometry::New(periodicCube(dir, "", ""))->coarseMesh({0.3, 0.3});
+    EXPECT_EQ
+    (
+        periodicPatchNames(m),
+        (std::vector<std::pair<std::string, std::string>>{{"p1", "p2"}})
+    );
 }
 
 
@@ -948,8 +1085,77 @@ TEST(csgGeometry, periodicSidesSharingAPatchAreAnErrorAskingForBcnames)
 {
     // Both sides would be one patch: no cyclic pair can be made of it
     const tempDir dir("geometry");
-    const auto geometry = Geometry::New(periodicCube(dir, false));
-    EXPECT_FATAL(geometry->coarseMesh({0.3, 0.3}), "Give each its own -bcname");
+    const auto geometry = Geometry::New(periodicCube(dir, "sides", "sides"));
+    EXPECT_FATAL
+    (
+        geometry->coarseMesh({0.3, 0.3}),
+        "cannot make cyclic patches of 'identify periodic p1 p2': both surfaces"
+        " are in patch sides. Give each its own -bcname"
+    );
+}
+
+
+TEST(csgGeometry, unsupportedPeriodicPairsAreErrorsNamingTheirCase)
+{
+    const tempDir dir("geometry");
+    const std::string cube =
+        " and plane(0, 0, 0; 0, -1, 0) and plane(1, 1, 1; 0, 1, 0)"
+        " and plane(0, 0, 0; 0, 0, -1) and plane(1, 1, 1; 0, 0, 1)";
+    auto errorFor = [&](const std::string& name, const std::string& text)
+    {
+        const std::string file = dir.file(name, "algebraic3d\n" + text);
+        const auto geometry = Geometry::New(file);
+        const std::string m = errorOf([&]{ geometry->coarseMesh({0.3, 0.3}); });
+        EXPECT_NE(m.find("CSG geometry \"" + file + "\": cannot make cyclic patches of 'identify periodic "), std::string::npos) << m;
+        return m;
+    };
+
+    // Rotational: Netgen pairs only the points on the wedge's axis, each
+    // with itself
+    {
+        const std::string m = errorFor
+        (
+            "wedge.geo",
+            "solid a = plane(0, 0, 0; 0, -1, 0) -bcname=a;\n"
+            "solid b = plane(0, 0, 0; -0.5, 0.8660254037844386, 0) -bcname=b;\n"
+            "solid w = a and b and plane(0, 0, 0; 0, 0, -1) and plane(0, 0, 1; 0, 0, 1)\n"
+            "    and sphere(0, 0, 0; 1);\n"
+            "identify periodic a b;\n"
+            "tlo w;\n"
+        );
+        EXPECT_NE(m.find("'identify periodic a b': a and b are not a translation of each other"), std::string::npos) << m;
+        EXPECT_NE(m.find("Only translational periodic pairs are supported, not rotational ones"), std::string::npos) << m;
+    }
+    // One side in two pairs
+    {
+        const std::string m = errorFor
+        (
+            "twice.geo",
+            "solid left = plane(0, 0, 0; -1, 0, 0) -bcname=left;\n"
+            "solid right = plane(1, 1, 1; 1, 0, 0) -bcname=right;\n"
+            "solid front = plane(0, 0, 0; 0, -1, 0) -bcname=front;\n"
+            "solid cube = left and right and front" + cube + ";\n"
+            "identify periodic left right;\n"
+            "identify periodic left front;\n"
+            "tlo cube;\n"
+        );
+        EXPECT_NE(m.find("'identify periodic left front': the surface of left is in 'identify periodic left right' too"), std::string::npos) << m;
+    }
+    // A side between two regions, not on the boundary
+    {
+        const std::string m = errorFor
+        (
+            "between.geo",
+            "solid l0 = plane(0, 0, 0; -1, 0, 0) -bcname=l0;\n"
+            "solid mid = plane(1, 0, 0; 1, 0, 0);\n"
+            "solid box1 = l0 and mid" + cube + ";\n"
+            "solid box2 = not mid and plane(2, 0, 0; 1, 0, 0)" + cube + ";\n"
+            "identify periodic l0 mid;\n"
+            "tlo box1;\n"
+            "tlo box2;\n"
+        );
+        EXPECT_NE(m.find("'identify periodic l0 mid': the surface of mid lies between two regions"), std::string::npos) << m;
+    }
 }
 
 
