@@ -6,6 +6,7 @@
 #include <malloc.h>
 #include <cstdint>
 #include <cstring>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -17,6 +18,31 @@ using namespace pmsh;
 // The pipe protocol: a status byte (0 result, 1 error), then for a result
 // the point and tet counts and arrays, for an error its message.
 enum : char { resultFollows = 0, errorFollows = 1 };
+
+// The exit status of a child whose parent died before it could ask to
+// die with it (it has no one to mesh for)
+constexpr int orphanedExit = 4;
+
+//- Kills and reaps the child unless released: a parent that leaves by an
+//  exception (a result too large for its memory) leaves no mesher behind.
+class childGuard
+{
+    pid_t pid_;
+public:
+    explicit childGuard(pid_t pid) : pid_(pid) {}
+    ~childGuard()
+    {
+        if (pid_ > 0)
+        {
+            ::kill(pid_, SIGKILL);
+            int status = 0;
+            while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {}
+        }
+    }
+    childGuard(const childGuard&) = delete;
+    childGuard& operator=(const childGuard&) = delete;
+    pid_t release() { const pid_t p = pid_; pid_ = -1; return p; }
+};
 
 bool writeAll(int fd, const void* data, std::size_t n)
 {
@@ -72,6 +98,12 @@ bool readArray(int fd, std::vector<T>& v)
     {
         std::signal(sig, SIG_DFL);
     }
+    // Whoever stops the run stops the mesher too: no handler of the
+    // parent's (OpenFOAM's, MPI's) may keep it alive
+    for (int sig : {SIGTERM, SIGINT, SIGHUP, SIGQUIT, SIGPIPE})
+    {
+        std::signal(sig, SIG_DFL);
+    }
 
     // The mesher grows and shrinks large arrays all the time: let them
     // reuse the heap (pmshFoam itself maps each large array on its own, so
@@ -113,6 +145,7 @@ pmsh::TetMesh pmsh::meshInChildProcess
     {
         throw FatalError(msg() << "Cannot create a pipe: " << std::strerror(errno), function);
     }
+    const pid_t parent = ::getpid();
     const pid_t child = ::fork();
     if (child < 0)
     {
@@ -122,10 +155,18 @@ pmsh::TetMesh pmsh::meshInChildProcess
     }
     if (child == 0)
     {
+        // Die with the parent, however it ends; a parent that ended before
+        // this line cannot signal: then its pid is no longer the parent's
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent)
+        {
+            ::_exit(orphanedExit);
+        }
         ::close(fds[0]);
         childMain(fds[1], work);
     }
 
+    childGuard running(child);
     ::close(fds[1]);
     // Read before waiting: a child blocked on a full pipe would never end
     char reply = -1;
@@ -140,7 +181,8 @@ pmsh::TetMesh pmsh::meshInChildProcess
         );
     ::close(fds[0]);
     int status = 0;
-    while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {}
+    const pid_t finished = running.release();
+    while (::waitpid(finished, &status, 0) < 0 && errno == EINTR) {}
 
     if (WIFSIGNALED(status))
     {

@@ -14,6 +14,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 using namespace pmsh;
 using namespace pmsh::test;
 
@@ -211,3 +215,53 @@ TEST(meshInChildProcess, aFatalErrorInTheChildKeepsItsMessage)
     }
 }
 
+
+TEST(meshInChildProcess, theChildDiesWithItsParentWhenTheParentIsKilled)
+{
+    // This test process adopts its orphaned grandchildren, so that it can
+    // see how the mesher child ended once its parent is gone
+    ASSERT_EQ(::prctl(PR_SET_CHILD_SUBREAPER, 1), 0);
+    int fds[2];
+    ASSERT_EQ(::pipe(fds), 0);
+    const pid_t parent = ::fork();
+    ASSERT_GE(parent, 0);
+    if (parent == 0)
+    {
+        ::close(fds[0]);
+        meshInChildProcess
+        (
+            [&]() -> TetMesh
+            {
+                const pid_t me = ::getpid();
+                (void)!::write(fds[1], &me, sizeof(me));
+                for (;;) ::pause();
+            },
+            "a surface that takes forever"
+        );
+        ::_exit(0);
+    }
+    ::close(fds[1]);
+    pid_t child = 0;
+    ASSERT_EQ(::read(fds[0], &child, sizeof(child)), ssize_t(sizeof(child)));
+    ::close(fds[0]);
+
+    ::kill(parent, SIGKILL);
+    int status = 0;
+    ASSERT_EQ(::waitpid(parent, &status, 0), parent);
+
+    // The child, adopted by this process, must end by itself within 10 s
+    pid_t ended = 0;
+    for (int i = 0; i < 1000 && ended == 0; ++i)
+    {
+        ended = ::waitpid(child, &status, WNOHANG);
+        if (ended == 0) ::usleep(10*1000);
+    }
+    if (ended == 0)
+    {
+        ::kill(child, SIGKILL);
+        ::waitpid(child, &status, 0);
+    }
+    ::prctl(PR_SET_CHILD_SUBREAPER, 0);
+    ASSERT_EQ(ended, child) << "the mesher child outlived its killed parent";
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+}
