@@ -1,5 +1,6 @@
 """Stage 4's mesher children (src/volume/childProcess.H): they die with
-their rank however the run is stopped.
+their rank however the run is stopped, and the log says what they do
+while they work.
 
 - stopping: a run stopped in the middle of stage 4 leaves no pmshFoam
   process (rank or mesher child) behind after a few seconds: mpirun
@@ -8,6 +9,9 @@ their rank however the run is stopped.
   PR_SET_PDEATHSIG), a serial run stopped by SIGTERM. The processes of
   one run are found by a token in their environment, so that other
   pmshFoam runs on the machine do not count.
+- progress: with a short PMSH_PROGRESS_INTERVAL a run prints several
+  progress lines per rank in stage 4, in the documented format, with the
+  elapsed time growing.
 
 Run one test:  python3 testStage4Processes.py stopping.test_mpirunKilledLeavesNoProcess
 """
@@ -26,6 +30,12 @@ from tutorialCase import openfoam_environment  # noqa: E402
 from testSerialTutorials import CaseTest  # noqa: E402
 
 TOKEN = "PMSH_STAGE4_TEST_TOKEN"
+
+# A progress line of README's "The log" (the rank's prefix in parallel)
+PROGRESS = re.compile(
+    r"^(?:\[(\d+)\] )?    partition (\d+), attempt (\d+) \((\w+)(?:; [^)]*)?\): "
+    r"(\d+) s so far, CPU (\d+) s, (\d+) MiB, step: (.+)$", re.M)
+
 
 def processes_with(token):
     """{pid: (ppid, command name)} of the processes whose environment
@@ -130,6 +140,40 @@ class stopping(CaseTest):
 
     def test_serialRunStoppedBySigtermLeavesNoProcess(self):
         self.stop_and_check(1, "launcher", signal.SIGTERM)
+
+
+class progress(CaseTest):
+
+    def test_severalProgressLinesPerRankInStageFour(self):
+        c = self.case("sphere", maxCellSize=0.2, refinementLevels=2,
+                      volumeMesher="netgen")
+        _, text = c.run("pmshFoam", np=2, env={"PMSH_PROGRESS_INTERVAL": "0.5"})
+        stage4 = text[text.index("Stage 4"):text.index("Stage 5")]
+        lines = PROGRESS.findall(stage4)
+        for rank in ("0", "1"):
+            mine = [l for l in lines if l[0] == rank]
+            self.assertGreaterEqual(len(mine), 2, "rank %s:\n%s" % (rank, stage4))
+            for prefix, partition, attempt, mesher, *_ in mine:
+                self.assertEqual((partition, attempt, mesher), (rank, "1", "netgen"))
+            elapsed = [int(l[4]) for l in mine]
+            self.assertEqual(elapsed, sorted(elapsed))
+            self.assertLess(elapsed[0], elapsed[-1])
+            steps = {l[7] for l in mine}
+            self.assertTrue(steps <= {"starting", "checking the surface"}
+                            | {s for s in steps if re.match(r"Netgen: ", s)}
+                            | {s for s in steps if s.startswith("checking Netgen's")},
+                            steps)
+        # Every line of stage 4 is either a progress line or one of the
+        # stage's own lines: no half lines of ranks cut into each other
+        for line in stage4.splitlines()[1:]:
+            if line.strip() and not PROGRESS.match(line):
+                self.assertRegex(line, r"^    (fine cells|time \(s\))", stage4)
+
+    def test_noProgressLinesWithTheDefaultInterval(self):
+        """A short stage 4 (seconds) prints none with the default 30 s."""
+        c = self.case("sphere", refinementLevels=1, volumeMesher="netgen")
+        _, text = c.run("pmshFoam", np=2)
+        self.assertEqual(PROGRESS.findall(text), [])
 
 
 if __name__ == "__main__":
