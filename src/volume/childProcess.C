@@ -19,6 +19,7 @@
 #include <sstream>
 #include <poll.h>
 #include <sys/mman.h>
+#include <sys/socket.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -77,42 +78,49 @@ std::string readStep(const sharedStep& shared, const std::string& previous)
     return shared.sequence.load(std::memory_order_relaxed) == before ? text : previous;
 }
 
-//- A page of shared memory that outlives the fork in both processes.
+//- A page of shared memory that the child maps too, after a fork or an
+//  exec (a memfd: an anonymous mapping would not survive the exec).
 class sharedStepPage
 {
-    sharedStep* page_;
+    int fd_ = -1;
+    sharedStep* page_ = nullptr;
 public:
     sharedStepPage()
-    :
-        page_
-        (
-            static_cast<sharedStep*>
-            (
-                ::mmap
-                (
-                    nullptr, sizeof(sharedStep), PROT_READ | PROT_WRITE,
-                    MAP_SHARED | MAP_ANONYMOUS, -1, 0
-                )
-            )
-        )
     {
-        if (page_ == MAP_FAILED)
+        fd_ = ::memfd_create("pmshMeshingStep", 0);
+        if (fd_ < 0 || ::ftruncate(fd_, sizeof(sharedStep)) != 0)
         {
-            page_ = nullptr;
             return;
         }
-        new (page_) sharedStep();
-        writeStep(*page_, "starting");
+        page_ = mapStep(fd_);
+        if (page_)
+        {
+            new (page_) sharedStep();
+            writeStep(*page_, "starting");
+        }
     }
     ~sharedStepPage()
     {
         if (page_) ::munmap(page_, sizeof(sharedStep));
+        if (fd_ >= 0) ::close(fd_);
     }
     sharedStepPage(const sharedStepPage&) = delete;
     sharedStepPage& operator=(const sharedStepPage&) = delete;
 
+    //- The page of the memfd fd, nullptr where it cannot be mapped
+    static sharedStep* mapStep(int fd)
+    {
+        void* page = ::mmap
+        (
+            nullptr, sizeof(sharedStep), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0
+        );
+        return page == MAP_FAILED ? nullptr : static_cast<sharedStep*>(page);
+    }
+
     //- nullptr where shared memory was refused: progress without steps
     sharedStep* get() const { return page_; }
+
+    int fd() const { return fd_; }
 };
 
 //- CPU seconds (user + system) and resident bytes of a process, from
@@ -222,7 +230,10 @@ bool writeAll(int fd, const void* data, std::size_t n)
     const char* p = static_cast<const char*>(data);
     while (n > 0)
     {
-        const ssize_t w = ::write(fd, p, n);
+        // A socket (the request) whose reader died fails here, not by
+        // SIGPIPE, which would end the caller
+        ssize_t w = ::send(fd, p, n, MSG_NOSIGNAL);
+        if (w < 0 && errno == ENOTSOCK) w = ::write(fd, p, n);
         if (w < 0 && errno == EINTR) continue;
         if (w <= 0) return false;
         p += w;
@@ -261,6 +272,88 @@ bool readArray(int fd, std::vector<T>& v)
     v.resize(n);
     return readAll(fd, v.data(), n*sizeof(T));
 }
+
+// The request of a fresh mesher process (meshInChildProcess with a
+// VolumeMesher): what it meshes and how, in the order written
+
+bool writeString(int fd, const std::string& text)
+{
+    return writeArray(fd, std::vector<char>(text.begin(), text.end()));
+}
+
+bool readString(int fd, std::string& text)
+{
+    std::vector<char> chars;
+    if (!readArray(fd, chars)) return false;
+    text.assign(chars.begin(), chars.end());
+    return true;
+}
+
+template<class T>
+bool writeValue(int fd, const T& x)
+{
+    return writeAll(fd, &x, sizeof(T));
+}
+
+template<class T>
+bool readValue(int fd, T& x)
+{
+    return readAll(fd, &x, sizeof(T));
+}
+
+struct mesherRequest
+{
+    std::string mesher;
+    std::vector<point3> points;
+    std::vector<triVerts> triangles;
+    volumeMeshParameters parameters;
+};
+
+bool writeRequest(int fd, const mesherRequest& r)
+{
+    const volumeMeshParameters& p = r.parameters;
+    bool ok =
+        writeString(fd, r.mesher) && writeArray(fd, r.points) && writeArray(fd, r.triangles)
+     && writeValue(fd, p.maxCellSize) && writeValue(fd, p.grading)
+     && writeValue(fd, p.optimisationSteps) && writeValue(fd, p.threads)
+     && writeString(fd, p.what) && writeArray(fd, p.interfaceTriangles)
+     && writeValue(fd, std::uint64_t(p.regions.size()));
+    for (const sizeRegion& g : p.regions)
+    {
+        ok = ok
+         && writeString(fd, g.name) && writeValue(fd, g.type)
+         && writeValue(fd, g.min) && writeValue(fd, g.max) && writeValue(fd, g.centre)
+         && writeValue(fd, g.point1) && writeValue(fd, g.point2)
+         && writeValue(fd, g.radius) && writeValue(fd, g.size);
+    }
+    return ok;
+}
+
+bool readRequest(int fd, mesherRequest& r)
+{
+    volumeMeshParameters& p = r.parameters;
+    std::uint64_t nRegions = 0;
+    bool ok =
+        readString(fd, r.mesher) && readArray(fd, r.points) && readArray(fd, r.triangles)
+     && readValue(fd, p.maxCellSize) && readValue(fd, p.grading)
+     && readValue(fd, p.optimisationSteps) && readValue(fd, p.threads)
+     && readString(fd, p.what) && readArray(fd, p.interfaceTriangles)
+     && readValue(fd, nRegions);
+    p.regions.resize(ok ? nRegions : 0);
+    for (sizeRegion& g : p.regions)
+    {
+        ok = ok
+         && readString(fd, g.name) && readValue(fd, g.type)
+         && readValue(fd, g.min) && readValue(fd, g.max) && readValue(fd, g.centre)
+         && readValue(fd, g.point1) && readValue(fd, g.point2)
+         && readValue(fd, g.radius) && readValue(fd, g.size);
+    }
+    return ok;
+}
+
+// The executable that meshers run in, fresh (meshInFreshProcesses); empty:
+// they run in a fork of the caller
+std::string freshProcessExecutable;
 
 // Runs in the child: never returns
 [[noreturn]] void childMain(int fd, const std::function<TetMesh()>& work)
@@ -348,13 +441,22 @@ double pmsh::progressInterval()
 }
 
 
-pmsh::TetMesh pmsh::meshInChildProcess
+namespace
+{
+
+//- The common part of both ways to mesh in a child: fork, make the child
+//  die with its parent, let it start (inChild: never returns), hand it its
+//  input (inParent), log progress while it works, and read its result.
+//  The child writes its reply to the fd it is given.
+pmsh::TetMesh runInChild
 (
-    const std::function<TetMesh()>& work,
     const std::string& what,
-    const std::string& attempt
+    const std::string& attempt,
+    const std::function<void(int replyFd, const sharedStepPage& step)>& inChild,
+    const std::function<void()>& inParent
 )
 {
+    using namespace pmsh;
     const char* function = "pmsh::meshInChildProcess";
     const double interval = progressInterval();
     const sharedStepPage step;
@@ -379,18 +481,20 @@ pmsh::TetMesh pmsh::meshInChildProcess
     {
         // Die with the parent, however it ends; a parent that ended before
         // this line cannot signal: then its pid is no longer the parent's
+        // (the request survives an exec)
         ::prctl(PR_SET_PDEATHSIG, SIGKILL);
         if (::getppid() != parent)
         {
             ::_exit(orphanedExit);
         }
-        childStep = step.get();
         ::close(fds[0]);
-        childMain(fds[1], work);
+        inChild(fds[1], step);
+        ::_exit(orphanedExit);
     }
 
     childGuard running(child);
     ::close(fds[1]);
+    inParent();
     waitLogging(fds[0], child, step.get(), interval, attempt.empty() ? what : attempt);
     // Read before waiting: a child blocked on a full pipe would never end
     char reply = -1;
@@ -432,4 +536,154 @@ pmsh::TetMesh pmsh::meshInChildProcess
         );
     }
     return result;
+}
+
+} // End anonymous namespace
+
+
+pmsh::TetMesh pmsh::meshInChildProcess
+(
+    const std::function<TetMesh()>& work,
+    const std::string& what,
+    const std::string& attempt
+)
+{
+    return runInChild
+    (
+        what, attempt,
+        [&](int replyFd, const sharedStepPage& step)
+        {
+            childStep = step.get();
+            childMain(replyFd, work);
+        },
+        [] {}
+    );
+}
+
+
+const char* const pmsh::mesherChildOption = "-pmshMesherChild";
+
+
+void pmsh::meshInFreshProcesses()
+{
+    std::vector<char> path(4096);
+    const ssize_t n = ::readlink("/proc/self/exe", path.data(), path.size() - 1);
+    if (n <= 0)
+    {
+        throw FatalError
+        (
+            msg() << "Cannot read /proc/self/exe: " << std::strerror(errno)
+                << " (the volume meshers run in fresh processes of pmshFoam)",
+            "pmsh::meshInFreshProcesses"
+        );
+    }
+    freshProcessExecutable.assign(path.data(), std::size_t(n));
+}
+
+
+pmsh::TetMesh pmsh::meshInChildProcess
+(
+    const VolumeMesher& mesher,
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
+    const volumeMeshParameters& parameters,
+    const std::string& attempt
+)
+{
+    if (freshProcessExecutable.empty() || !mesher.dependsOnTheHeap())
+    {
+        return meshInChildProcess
+        (
+            [&] { return mesher.mesh(surfacePoints, surfaceTriangles, parameters); },
+            parameters.what, attempt
+        );
+    }
+
+    int request[2];
+    if (::socketpair(AF_UNIX, SOCK_STREAM, 0, request) != 0)
+    {
+        throw FatalError
+        (
+            msg() << "Cannot create a socket pair: " << std::strerror(errno),
+            "pmsh::meshInChildProcess"
+        );
+    }
+    TetMesh result;
+    try
+    {
+        result = runInChild
+        (
+            parameters.what, attempt,
+            [&](int replyFd, const sharedStepPage& step)
+            {
+                ::close(request[0]);
+                const std::string exe = freshProcessExecutable;
+                const std::string fds[3] =
+                {
+                    std::to_string(request[1]), std::to_string(replyFd),
+                    std::to_string(step.fd())
+                };
+                const char* argv[] =
+                {
+                    exe.c_str(), mesherChildOption,
+                    fds[0].c_str(), fds[1].c_str(), fds[2].c_str(), nullptr
+                };
+                ::execv(exe.c_str(), const_cast<char* const*>(argv));
+                std::fprintf
+                (
+                    stderr, "Cannot run %s for the volume mesher: %s\n",
+                    exe.c_str(), std::strerror(errno)
+                );
+            },
+            [&]
+            {
+                ::close(request[1]);
+                // A child that dies before reading it all is told by its
+                // exit status, not by this write
+                writeRequest
+                (
+                    request[0],
+                    {mesher.name(), surfacePoints, surfaceTriangles, parameters}
+                );
+                ::close(request[0]);
+            }
+        );
+    }
+    catch (...)
+    {
+        ::close(request[0]);
+        ::close(request[1]);
+        throw;
+    }
+    return result;
+}
+
+
+int pmsh::mesherChildMain(int argc, char* argv[])
+{
+    if (argc != 5)
+    {
+        std::fprintf
+        (
+            stderr, "%s %s: meant for pmshFoam itself (request, reply and step fds)\n",
+            argv[0], mesherChildOption
+        );
+        return 1;
+    }
+    const int requestFd = std::atoi(argv[2]);
+    const int replyFd = std::atoi(argv[3]);
+    childStep = sharedStepPage::mapStep(std::atoi(argv[4]));
+    mesherRequest request;
+    const bool complete = readRequest(requestFd, request);
+    ::close(requestFd);
+    if (!complete)
+    {
+        return 2;
+    }
+    const std::unique_ptr<VolumeMesher> mesher = VolumeMesher::New(request.mesher);
+    childMain
+    (
+        replyFd,
+        [&] { return mesher->mesh(request.points, request.triangles, request.parameters); }
+    );
 }
