@@ -63,11 +63,13 @@ def processes_with(token):
 
 class stopping(CaseTest):
 
-    def start(self, np, token):
-        """Starts pmshFoam on tutorials/sphere at r = 3 with Netgen (a
-        stage 4 of a minute or more) and returns (process, case, log) once
-        a mesher child works in stage 4."""
-        c = self.case("sphere", refinementLevels=3, volumeMesher="netgen")
+    def start(self, np, token, mesher):
+        """Starts pmshFoam on tutorials/sphere with `mesher` (netgen at
+        r = 3, hxt at r = 4: a stage 4 of many seconds) and returns
+        (process, case, processes) once a mesher child works in stage 4
+        (for hxt a fresh process of pmshFoam)."""
+        c = self.case("sphere", refinementLevels=3 if mesher == "netgen" else 4,
+                      volumeMesher=mesher)
         argv = [c.pmshFoam, "-case", c.dir]
         if np > 1:
             argv = ["mpirun", "--oversubscribe", "-np", str(np)] + argv + ["-parallel"]
@@ -113,9 +115,9 @@ class stopping(CaseTest):
                 pass
         self.assertEqual(left, {}, "left running 10 s after the stop, of %s" % before)
 
-    def stop_and_check(self, np, which, sig):
+    def stop_and_check(self, np, which, sig, mesher="netgen"):
         token = uuid.uuid4().hex
-        proc, c, running = self.start(np, token)
+        proc, c, running = self.start(np, token, mesher)
         if which == "launcher":
             os.kill(proc.pid, sig)
         else:
@@ -137,6 +139,11 @@ class stopping(CaseTest):
         mpirun, and their children only die with them by
         PR_SET_PDEATHSIG (without it they mesh on for minutes)."""
         self.stop_and_check(2, "launcher", signal.SIGKILL)
+
+    def test_mpirunKilledLeavesNoFreshHxtProcess(self):
+        """HXT runs in an exec'd pmshFoam: PR_SET_PDEATHSIG holds across
+        the exec."""
+        self.stop_and_check(2, "launcher", signal.SIGKILL, "hxt")
 
     def test_serialRunStoppedBySigtermLeavesNoProcess(self):
         self.stop_and_check(1, "launcher", signal.SIGTERM)
