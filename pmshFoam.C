@@ -72,6 +72,7 @@ Usage
 #include "meshSettings.H"
 #include "partitionCoarseMesh.H"
 #include "partitionVolume.H"
+#include "childProcess.H"
 #include "pmshPipeline.H"
 #include "procAddressing.H"
 #include "stageLog.H"
@@ -83,6 +84,7 @@ Usage
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <memory>
 #include <numeric>
@@ -110,6 +112,15 @@ using namespace Foam;
 
 int main(int argc, char *argv[])
 {
+    // A volume mesher's fresh process (src/volume/childProcess.H): nothing
+    // of OpenFOAM's or MPI's runs there
+    if (argc > 1 && std::strcmp(argv[1], pmsh::mesherChildOption) == 0)
+    {
+        return pmsh::mesherChildMain(argc, argv);
+    }
+    // The same case meshes the same whatever the ranks' heaps went through
+    pmsh::meshInFreshProcesses();
+
     argList::addNote
     (
         "Generate a tetrahedral mesh in parallel (PMSH method) from a Netgen"

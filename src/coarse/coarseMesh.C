@@ -93,7 +93,10 @@ CoarseMesh meshOnMaster(const Geometry& geometry, const coarseMeshParameters& pa
     volumeMeshParameters p;
     p.maxCellSize = parameters.maxCellSize;
     p.grading = parameters.grading;
-    p.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    // One thread: multithreaded HXT gives another coarse mesh from run to
+    // run, and so another partition and fine mesh (on this shared 2-core
+    // machine one thread was not slower: README, "Reproducible meshes")
+    p.threads = 1;
     p.what = "the coarse surface";
     p.regions = parameters.regions;
 

@@ -1,6 +1,7 @@
 #include "Info.H"
 
 #include <iostream>
+#include <string>
 #include <ostream>
 #include <streambuf>
 
@@ -53,4 +54,14 @@ std::ostream& pmsh::Pout()
         std::cout << '[' << logRank << "] ";
     }
     return std::cout;
+}
+
+
+void pmsh::PoutLine(const std::string& line)
+{
+    std::string text =
+        logParallel ? '[' + std::to_string(logRank) + "] " + line : line;
+    text += '\n';
+    std::cout.write(text.data(), std::streamsize(text.size()));
+    std::cout.flush();
 }

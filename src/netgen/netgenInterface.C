@@ -1438,4 +1438,18 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
 }
 
 
+std::string pmsh::ng::currentTask()
+{
+    // Read once: Netgen changes them as it goes
+    const char* task = netgen::multithread.task;
+    const double percent = netgen::multithread.percent;
+    std::string text = task && *task ? task : "";
+    if (!text.empty() && percent > 0 && percent <= 100)
+    {
+        text += ", " + std::to_string(int(percent)) + "%";
+    }
+    return text;
+}
+
+
 // ************************************************************************* //

@@ -9,6 +9,7 @@
 #include "hxtVolumeMesher.H"
 #include "pmshError.H"
 #include "tetFaceMatching.H"
+#include "childProcess.H"
 
 #include <cstring>
 
@@ -298,8 +299,14 @@ pmsh::TetMesh pmsh::VolumeMesher::mesh
     const volumeMeshParameters& parameters
 ) const
 {
+    reportMeshingStep("checking the surface");
     checkClosedSurface(surfacePoints, surfaceTriangles, parameters.what);
+    reportMeshingStep(title() + ": " + std::to_string(surfaceTriangles.size()) + " surface triangles");
     TetMesh result = generate(surfacePoints, surfaceTriangles, parameters);
+    reportMeshingStep
+    (
+        "checking " + title() + "'s " + std::to_string(result.tets.size()) + " cells"
+    );
     verifyVolumeMesh
     (
         surfacePoints, surfaceTriangles, result,

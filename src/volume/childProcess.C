@@ -1,11 +1,26 @@
 #include "childProcess.H"
+#include "Info.H"
 #include "pmshError.H"
 
+#include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <cmath>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
 #include <malloc.h>
+#include <mutex>
 #include <cstdint>
 #include <cstring>
+#include <sstream>
+#include <poll.h>
+#include <sys/mman.h>
+#include <sys/socket.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,12 +33,207 @@ using namespace pmsh;
 // the point and tet counts and arrays, for an error its message.
 enum : char { resultFollows = 0, errorFollows = 1 };
 
+// The exit status of a child whose parent died before it could ask to
+// die with it (it has no one to mesh for)
+constexpr int orphanedExit = 4;
+
+//- The step a child is in, in memory shared with its parent: the parent
+//  reads it when it logs progress, the child writes it whenever it likes,
+//  with no pipe traffic and no thread. The sequence number is odd while
+//  the text is being written, so the parent never logs half a step.
+struct sharedStep
+{
+    std::atomic<unsigned> sequence;
+    char text[252];
+};
+
+// The child's page; nullptr in the parent, where reportMeshingStep does
+// nothing
+sharedStep* childStep = nullptr;
+
+void writeStep(sharedStep& shared, const std::string& step)
+{
+    // One writer at a time (a backend may report from a thread of its own)
+    static std::mutex writing;
+    const std::lock_guard<std::mutex> lock(writing);
+    shared.sequence.fetch_add(1, std::memory_order_acq_rel);
+    const std::size_t n = std::min(step.size(), sizeof(shared.text) - 1);
+    std::memcpy(shared.text, step.data(), n);
+    shared.text[n] = 0;
+    shared.sequence.fetch_add(1, std::memory_order_acq_rel);
+}
+
+// The step, or `previous` when the child is writing it just now
+std::string readStep(const sharedStep& shared, const std::string& previous)
+{
+    const unsigned before = shared.sequence.load(std::memory_order_acquire);
+    if (before % 2)
+    {
+        return previous;
+    }
+    char text[sizeof(shared.text)];
+    std::memcpy(text, shared.text, sizeof(text));
+    text[sizeof(text) - 1] = 0;
+    std::atomic_thread_fence(std::memory_order_acquire);
+    return shared.sequence.load(std::memory_order_relaxed) == before ? text : previous;
+}
+
+//- A page of shared memory that the child maps too, after a fork or an
+//  exec (a memfd: an anonymous mapping would not survive the exec).
+class sharedStepPage
+{
+    int fd_ = -1;
+    sharedStep* page_ = nullptr;
+public:
+    sharedStepPage()
+    {
+        fd_ = ::memfd_create("pmshMeshingStep", 0);
+        if (fd_ < 0 || ::ftruncate(fd_, sizeof(sharedStep)) != 0)
+        {
+            return;
+        }
+        page_ = mapStep(fd_);
+        if (page_)
+        {
+            new (page_) sharedStep();
+            writeStep(*page_, "starting");
+        }
+    }
+    ~sharedStepPage()
+    {
+        if (page_) ::munmap(page_, sizeof(sharedStep));
+        if (fd_ >= 0) ::close(fd_);
+    }
+    sharedStepPage(const sharedStepPage&) = delete;
+    sharedStepPage& operator=(const sharedStepPage&) = delete;
+
+    //- The page of the memfd fd, nullptr where it cannot be mapped
+    static sharedStep* mapStep(int fd)
+    {
+        void* page = ::mmap
+        (
+            nullptr, sizeof(sharedStep), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0
+        );
+        return page == MAP_FAILED ? nullptr : static_cast<sharedStep*>(page);
+    }
+
+    //- nullptr where shared memory was refused: progress without steps
+    sharedStep* get() const { return page_; }
+
+    int fd() const { return fd_; }
+};
+
+//- CPU seconds (user + system) and resident bytes of a process, from
+//  /proc; zeros where it cannot be read.
+void processUsage(pid_t pid, double& cpuSeconds, double& residentBytes)
+{
+    cpuSeconds = 0;
+    residentBytes = 0;
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+    // The command name, in parentheses, may hold spaces: fields follow the
+    // last ')', the state first; utime and stime are the 12th and 13th
+    const std::size_t close = text.rfind(')');
+    if (close != std::string::npos)
+    {
+        std::istringstream fields(text.substr(close + 1));
+        std::string field;
+        double ticks = 0;
+        for (int i = 1; i <= 13 && fields >> field; ++i)
+        {
+            if (i >= 12) ticks += std::atof(field.c_str());
+        }
+        cpuSeconds = ticks/double(::sysconf(_SC_CLK_TCK));
+    }
+    std::ifstream statm("/proc/" + std::to_string(pid) + "/statm");
+    double pages = 0, resident = 0;
+    if (statm >> pages >> resident)
+    {
+        residentBytes = resident*double(::sysconf(_SC_PAGESIZE));
+    }
+}
+
+//- Kills and reaps the child unless released: a parent that leaves by an
+//  exception (a result too large for its memory) leaves no mesher behind.
+class childGuard
+{
+    pid_t pid_;
+public:
+    explicit childGuard(pid_t pid) : pid_(pid) {}
+    ~childGuard()
+    {
+        if (pid_ > 0)
+        {
+            ::kill(pid_, SIGKILL);
+            int status = 0;
+            while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {}
+        }
+    }
+    childGuard(const childGuard&) = delete;
+    childGuard& operator=(const childGuard&) = delete;
+    pid_t release() { const pid_t p = pid_; pid_ = -1; return p; }
+};
+
+//- Wait until the child's reply starts (or it hangs up), logging a line
+//  every `interval` seconds meanwhile.
+void waitLogging
+(
+    int fd,
+    pid_t child,
+    const sharedStep* step,
+    double interval,
+    const std::string& attempt
+)
+{
+    using clock = std::chrono::steady_clock;
+    const clock::time_point start = clock::now();
+    const auto every = std::chrono::duration_cast<clock::duration>
+    (
+        std::chrono::duration<double>(interval)
+    );
+    clock::time_point next = start + every;
+    std::string lastStep = "starting";
+    for (;;)
+    {
+        const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>
+        (
+            next - clock::now()
+        ).count();
+        pollfd reply{fd, POLLIN, 0};
+        const int ready = ::poll(&reply, 1, int(std::max<long long>(0, wait)));
+        if (ready > 0 || (ready < 0 && errno != EINTR))
+        {
+            return;
+        }
+        if (ready == 0)
+        {
+            if (step)
+            {
+                lastStep = readStep(*step, lastStep);
+            }
+            double cpu = 0, resident = 0;
+            processUsage(child, cpu, resident);
+            const double elapsed = std::chrono::duration<double>(clock::now() - start).count();
+            std::ostringstream line;
+            line
+                << "    " << attempt << ": " << std::lround(elapsed) << " s so far, CPU "
+                << std::lround(cpu) << " s, " << std::lround(resident/(1024*1024))
+                << " MiB, step: " << lastStep;
+            PoutLine(line.str());
+            next += every;
+        }
+    }
+}
+
 bool writeAll(int fd, const void* data, std::size_t n)
 {
     const char* p = static_cast<const char*>(data);
     while (n > 0)
     {
-        const ssize_t w = ::write(fd, p, n);
+        // A socket (the request) whose reader died fails here, not by
+        // SIGPIPE, which would end the caller
+        ssize_t w = ::send(fd, p, n, MSG_NOSIGNAL);
+        if (w < 0 && errno == ENOTSOCK) w = ::write(fd, p, n);
         if (w < 0 && errno == EINTR) continue;
         if (w <= 0) return false;
         p += w;
@@ -63,6 +273,88 @@ bool readArray(int fd, std::vector<T>& v)
     return readAll(fd, v.data(), n*sizeof(T));
 }
 
+// The request of a fresh mesher process (meshInChildProcess with a
+// VolumeMesher): what it meshes and how, in the order written
+
+bool writeString(int fd, const std::string& text)
+{
+    return writeArray(fd, std::vector<char>(text.begin(), text.end()));
+}
+
+bool readString(int fd, std::string& text)
+{
+    std::vector<char> chars;
+    if (!readArray(fd, chars)) return false;
+    text.assign(chars.begin(), chars.end());
+    return true;
+}
+
+template<class T>
+bool writeValue(int fd, const T& x)
+{
+    return writeAll(fd, &x, sizeof(T));
+}
+
+template<class T>
+bool readValue(int fd, T& x)
+{
+    return readAll(fd, &x, sizeof(T));
+}
+
+struct mesherRequest
+{
+    std::string mesher;
+    std::vector<point3> points;
+    std::vector<triVerts> triangles;
+    volumeMeshParameters parameters;
+};
+
+bool writeRequest(int fd, const mesherRequest& r)
+{
+    const volumeMeshParameters& p = r.parameters;
+    bool ok =
+        writeString(fd, r.mesher) && writeArray(fd, r.points) && writeArray(fd, r.triangles)
+     && writeValue(fd, p.maxCellSize) && writeValue(fd, p.grading)
+     && writeValue(fd, p.optimisationSteps) && writeValue(fd, p.threads)
+     && writeString(fd, p.what) && writeArray(fd, p.interfaceTriangles)
+     && writeValue(fd, std::uint64_t(p.regions.size()));
+    for (const sizeRegion& g : p.regions)
+    {
+        ok = ok
+         && writeString(fd, g.name) && writeValue(fd, g.type)
+         && writeValue(fd, g.min) && writeValue(fd, g.max) && writeValue(fd, g.centre)
+         && writeValue(fd, g.point1) && writeValue(fd, g.point2)
+         && writeValue(fd, g.radius) && writeValue(fd, g.size);
+    }
+    return ok;
+}
+
+bool readRequest(int fd, mesherRequest& r)
+{
+    volumeMeshParameters& p = r.parameters;
+    std::uint64_t nRegions = 0;
+    bool ok =
+        readString(fd, r.mesher) && readArray(fd, r.points) && readArray(fd, r.triangles)
+     && readValue(fd, p.maxCellSize) && readValue(fd, p.grading)
+     && readValue(fd, p.optimisationSteps) && readValue(fd, p.threads)
+     && readString(fd, p.what) && readArray(fd, p.interfaceTriangles)
+     && readValue(fd, nRegions);
+    p.regions.resize(ok ? nRegions : 0);
+    for (sizeRegion& g : p.regions)
+    {
+        ok = ok
+         && readString(fd, g.name) && readValue(fd, g.type)
+         && readValue(fd, g.min) && readValue(fd, g.max) && readValue(fd, g.centre)
+         && readValue(fd, g.point1) && readValue(fd, g.point2)
+         && readValue(fd, g.radius) && readValue(fd, g.size);
+    }
+    return ok;
+}
+
+// The executable that meshers run in, fresh (meshInFreshProcesses); empty:
+// they run in a fork of the caller
+std::string freshProcessExecutable;
+
 // Runs in the child: never returns
 [[noreturn]] void childMain(int fd, const std::function<TetMesh()>& work)
 {
@@ -72,6 +364,17 @@ bool readArray(int fd, std::vector<T>& v)
     {
         std::signal(sig, SIG_DFL);
     }
+    // Whoever stops the run stops the mesher too: no handler of the
+    // parent's (OpenFOAM's, MPI's) may keep it alive
+    for (int sig : {SIGTERM, SIGINT, SIGHUP, SIGQUIT, SIGPIPE})
+    {
+        std::signal(sig, SIG_DFL);
+    }
+    // What the meshers print goes out line by line: a crash loses none of
+    // it, and the parent's buffer was emptied before the fork
+    // (a buffer of its own: glibc keeps the old one fully buffered)
+    static char lineBuffer[BUFSIZ];
+    std::setvbuf(stdout, lineBuffer, _IOLBF, sizeof(lineBuffer));
 
     // The mesher grows and shrinks large arrays all the time: let them
     // reuse the heap (pmshFoam itself maps each large array on its own, so
@@ -94,6 +397,10 @@ bool readArray(int fd, std::vector<T>& v)
         ok = writeAll(fd, &status, 1) && writeArray(fd, text);
     }
     ::close(fd);
+    // _exit skips stdio's flush at exit: the meshers' last words first
+    std::cout.flush();
+    std::cerr.flush();
+    std::fflush(nullptr);
     // _exit: no atexit handlers, no MPI or library destructors in the child
     ::_exit(ok ? 0 : 3);
 }
@@ -101,18 +408,68 @@ bool readArray(int fd, std::vector<T>& v)
 } // End anonymous namespace
 
 
-pmsh::TetMesh pmsh::meshInChildProcess
+void pmsh::reportMeshingStep(const std::string& step)
+{
+    if (childStep)
+    {
+        writeStep(*childStep, step);
+    }
+}
+
+
+double pmsh::progressInterval()
+{
+    const char* name = "PMSH_PROGRESS_INTERVAL";
+    const char* value = std::getenv(name);
+    if (!value || !*value)
+    {
+        return 30;
+    }
+    char* end = nullptr;
+    const double seconds = std::strtod(value, &end);
+    if (*end || !(seconds > 0) || !std::isfinite(seconds))
+    {
+        throw FatalError
+        (
+            msg() << "The environment variable " << name << " is '" << value
+                << "': valid values are seconds above 0 between progress lines"
+                << " of stage 4 (unset: 30)",
+            "pmsh::progressInterval"
+        );
+    }
+    return seconds;
+}
+
+
+namespace
+{
+
+//- The common part of both ways to mesh in a child: fork, make the child
+//  die with its parent, let it start (inChild: never returns), hand it its
+//  input (inParent), log progress while it works, and read its result.
+//  The child writes its reply to the fd it is given.
+pmsh::TetMesh runInChild
 (
-    const std::function<TetMesh()>& work,
-    const std::string& what
+    const std::string& what,
+    const std::string& attempt,
+    const std::function<void(int replyFd, const sharedStepPage& step)>& inChild,
+    const std::function<void()>& inParent
 )
 {
+    using namespace pmsh;
     const char* function = "pmsh::meshInChildProcess";
+    const double interval = progressInterval();
+    const sharedStepPage step;
     int fds[2];
     if (::pipe(fds) != 0)
     {
         throw FatalError(msg() << "Cannot create a pipe: " << std::strerror(errno), function);
     }
+    // The parent's unwritten output would be written twice: by the parent
+    // and by the child's copy of the buffer
+    std::cout.flush();
+    std::fflush(nullptr);
+    const pid_t parent = ::getpid();
     const pid_t child = ::fork();
     if (child < 0)
     {
@@ -122,11 +479,23 @@ pmsh::TetMesh pmsh::meshInChildProcess
     }
     if (child == 0)
     {
+        // Die with the parent, however it ends; a parent that ended before
+        // this line cannot signal: then its pid is no longer the parent's
+        // (the request survives an exec)
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent)
+        {
+            ::_exit(orphanedExit);
+        }
         ::close(fds[0]);
-        childMain(fds[1], work);
+        inChild(fds[1], step);
+        ::_exit(orphanedExit);
     }
 
+    childGuard running(child);
     ::close(fds[1]);
+    inParent();
+    waitLogging(fds[0], child, step.get(), interval, attempt.empty() ? what : attempt);
     // Read before waiting: a child blocked on a full pipe would never end
     char reply = -1;
     std::vector<char> errorText;
@@ -140,7 +509,8 @@ pmsh::TetMesh pmsh::meshInChildProcess
         );
     ::close(fds[0]);
     int status = 0;
-    while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {}
+    const pid_t finished = running.release();
+    while (::waitpid(finished, &status, 0) < 0 && errno == EINTR) {}
 
     if (WIFSIGNALED(status))
     {
@@ -166,4 +536,154 @@ pmsh::TetMesh pmsh::meshInChildProcess
         );
     }
     return result;
+}
+
+} // End anonymous namespace
+
+
+pmsh::TetMesh pmsh::meshInChildProcess
+(
+    const std::function<TetMesh()>& work,
+    const std::string& what,
+    const std::string& attempt
+)
+{
+    return runInChild
+    (
+        what, attempt,
+        [&](int replyFd, const sharedStepPage& step)
+        {
+            childStep = step.get();
+            childMain(replyFd, work);
+        },
+        [] {}
+    );
+}
+
+
+const char* const pmsh::mesherChildOption = "-pmshMesherChild";
+
+
+void pmsh::meshInFreshProcesses()
+{
+    std::vector<char> path(4096);
+    const ssize_t n = ::readlink("/proc/self/exe", path.data(), path.size() - 1);
+    if (n <= 0)
+    {
+        throw FatalError
+        (
+            msg() << "Cannot read /proc/self/exe: " << std::strerror(errno)
+                << " (the volume meshers run in fresh processes of pmshFoam)",
+            "pmsh::meshInFreshProcesses"
+        );
+    }
+    freshProcessExecutable.assign(path.data(), std::size_t(n));
+}
+
+
+pmsh::TetMesh pmsh::meshInChildProcess
+(
+    const VolumeMesher& mesher,
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
+    const volumeMeshParameters& parameters,
+    const std::string& attempt
+)
+{
+    if (freshProcessExecutable.empty() || !mesher.dependsOnTheHeap())
+    {
+        return meshInChildProcess
+        (
+            [&] { return mesher.mesh(surfacePoints, surfaceTriangles, parameters); },
+            parameters.what, attempt
+        );
+    }
+
+    int request[2];
+    if (::socketpair(AF_UNIX, SOCK_STREAM, 0, request) != 0)
+    {
+        throw FatalError
+        (
+            msg() << "Cannot create a socket pair: " << std::strerror(errno),
+            "pmsh::meshInChildProcess"
+        );
+    }
+    TetMesh result;
+    try
+    {
+        result = runInChild
+        (
+            parameters.what, attempt,
+            [&](int replyFd, const sharedStepPage& step)
+            {
+                ::close(request[0]);
+                const std::string exe = freshProcessExecutable;
+                const std::string fds[3] =
+                {
+                    std::to_string(request[1]), std::to_string(replyFd),
+                    std::to_string(step.fd())
+                };
+                const char* argv[] =
+                {
+                    exe.c_str(), mesherChildOption,
+                    fds[0].c_str(), fds[1].c_str(), fds[2].c_str(), nullptr
+                };
+                ::execv(exe.c_str(), const_cast<char* const*>(argv));
+                std::fprintf
+                (
+                    stderr, "Cannot run %s for the volume mesher: %s\n",
+                    exe.c_str(), std::strerror(errno)
+                );
+            },
+            [&]
+            {
+                ::close(request[1]);
+                // A child that dies before reading it all is told by its
+                // exit status, not by this write
+                writeRequest
+                (
+                    request[0],
+                    {mesher.name(), surfacePoints, surfaceTriangles, parameters}
+                );
+                ::close(request[0]);
+            }
+        );
+    }
+    catch (...)
+    {
+        ::close(request[0]);
+        ::close(request[1]);
+        throw;
+    }
+    return result;
+}
+
+
+int pmsh::mesherChildMain(int argc, char* argv[])
+{
+    if (argc != 5)
+    {
+        std::fprintf
+        (
+            stderr, "%s %s: meant for pmshFoam itself (request, reply and step fds)\n",
+            argv[0], mesherChildOption
+        );
+        return 1;
+    }
+    const int requestFd = std::atoi(argv[2]);
+    const int replyFd = std::atoi(argv[3]);
+    childStep = sharedStepPage::mapStep(std::atoi(argv[4]));
+    mesherRequest request;
+    const bool complete = readRequest(requestFd, request);
+    ::close(requestFd);
+    if (!complete)
+    {
+        return 2;
+    }
+    const std::unique_ptr<VolumeMesher> mesher = VolumeMesher::New(request.mesher);
+    childMain
+    (
+        replyFd,
+        [&] { return mesher->mesh(request.points, request.triangles, request.parameters); }
+    );
 }

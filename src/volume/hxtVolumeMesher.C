@@ -7,6 +7,7 @@
 #include "pmshError.H"
 #include "tetQualityPass.H"
 #include "surfaceTopology.H"
+#include "childProcess.H"
 
 #include <gmsh.h>
 
@@ -288,7 +289,14 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         gmsh::option::setNumber("Mesh.Optimize", parameters.optimisationSteps > 0);
         gmsh::option::setNumber("Mesh.OptimizeThreshold", 0.3);
 
+        reportMeshingStep
+        (
+            parameters.optimisationSteps > 0
+          ? "Gmsh HXT: tetrahedra, then Gmsh's optimiser"
+          : "Gmsh HXT: tetrahedra"
+        );
         gmsh::model::mesh::generate(3);
+        reportMeshingStep("Gmsh HXT: reading the mesh back");
 
         std::vector<std::size_t> nodeTags;
         std::vector<double> coords, parametric;
@@ -378,6 +386,11 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
     // the partition's surface fixed
     if (parameters.optimisationSteps > 0)
     {
+        reportMeshingStep
+        (
+            "quality pass on " + std::to_string(result.tets.size()) + " cells, "
+          + std::to_string(parameters.optimisationSteps) + " steps"
+        );
         improveWorstCells
         (
             result, label(nSurface), surfaceTriangles,

@@ -115,8 +115,9 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
             partitionVolumeResult result;
             result.mesh = meshInChildProcess
             (
-                [&] { return at.mesher->mesh(surfacePoints, surfaceTriangles, at.parameters); },
-                at.parameters.what
+                *at.mesher, surfacePoints, surfaceTriangles, at.parameters,
+                at.parameters.what + ", attempt " + std::to_string(a + 1) + " ("
+              + at.mesher->name() + (at.change.empty() ? "" : "; " + at.change) + ")"
             );
             result.backend = at.mesher->name();
             result.attempts = int(a) + 1;

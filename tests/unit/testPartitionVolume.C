@@ -11,8 +11,15 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
+
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 using namespace pmsh;
 using namespace pmsh::test;
@@ -235,3 +242,155 @@ TEST(meshInChildProcess, aFatalErrorInTheChildKeepsItsMessage)
     }
 }
 
+
+
+namespace
+{
+
+//- Sets an environment variable while it lives.
+class scopedEnvironment
+{
+    std::string name_;
+public:
+    scopedEnvironment(const std::string& name, const std::string& value)
+    :
+        name_(name)
+    {
+        ::setenv(name.c_str(), value.c_str(), 1);
+    }
+    ~scopedEnvironment()
+    {
+        ::unsetenv(name_.c_str());
+    }
+};
+
+} // End anonymous namespace
+
+
+TEST(meshInChildProcess, logsProgressWithTheAttemptAndTheChildsStep)
+{
+    const scopedEnvironment interval("PMSH_PROGRESS_INTERVAL", "0.25");
+    ::testing::internal::CaptureStdout();
+    meshInChildProcess
+    (
+        []
+        {
+            reportMeshingStep("filling the test volume");
+            ::usleep(1300*1000);
+            return TetMesh();
+        },
+        "a test surface", "partition 7, attempt 2 (hxt; 1 thread)"
+    );
+    const std::string out = ::testing::internal::GetCapturedStdout();
+    const std::regex line
+    (
+        "    partition 7, attempt 2 \\(hxt; 1 thread\\): (\\d+) s so far, CPU \\d+ s,"
+        " \\d+ MiB, step: (starting|filling the test volume)\n"
+    );
+    std::vector<std::string> steps;
+    for (std::sregex_iterator m(out.begin(), out.end(), line), end; m != end; ++m)
+    {
+        steps.push_back((*m)[2]);
+    }
+    // 5 intervals in 1.3 s; a loaded machine may start the child late
+    EXPECT_GE(steps.size(), 3u) << out;
+    EXPECT_LE(steps.size(), 6u) << out;
+    ASSERT_FALSE(steps.empty());
+    EXPECT_EQ(steps.back(), "filling the test volume") << out;
+}
+
+
+TEST(meshInChildProcess, aWrongProgressIntervalNamesTheVariable)
+{
+    const scopedEnvironment interval("PMSH_PROGRESS_INTERVAL", "soon");
+    try
+    {
+        meshInChildProcess([] { return TetMesh(); }, "x");
+        FAIL() << "expected FatalError";
+    }
+    catch (const FatalError& e)
+    {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("PMSH_PROGRESS_INTERVAL is 'soon'"), std::string::npos) << m;
+        EXPECT_NE(m.find("seconds above 0"), std::string::npos) << m;
+    }
+}
+
+
+TEST(meshInChildProcess, whatTheChildPrintsIsNotLostWhenItEndsOrCrashes)
+{
+    // Captured, stdout is a file: fully buffered unless the child flushes
+    ::testing::internal::CaptureStdout();
+    meshInChildProcess
+    (
+        [] { std::printf("the mesher's last words"); return TetMesh(); }, "x"
+    );
+    EXPECT_THROW
+    (
+        meshInChildProcess
+        (
+            []() -> TetMesh
+            {
+                std::printf("a line before the crash\n");
+                std::raise(SIGSEGV);
+                return {};
+            },
+            "y"
+        ),
+        FatalError
+    );
+    const std::string out = ::testing::internal::GetCapturedStdout();
+    EXPECT_NE(out.find("the mesher's last words"), std::string::npos) << out;
+    EXPECT_NE(out.find("a line before the crash"), std::string::npos) << out;
+}
+
+
+TEST(meshInChildProcess, theChildDiesWithItsParentWhenTheParentIsKilled)
+{
+    // This test process adopts its orphaned grandchildren, so that it can
+    // see how the mesher child ended once its parent is gone
+    ASSERT_EQ(::prctl(PR_SET_CHILD_SUBREAPER, 1), 0);
+    int fds[2];
+    ASSERT_EQ(::pipe(fds), 0);
+    const pid_t parent = ::fork();
+    ASSERT_GE(parent, 0);
+    if (parent == 0)
+    {
+        ::close(fds[0]);
+        meshInChildProcess
+        (
+            [&]() -> TetMesh
+            {
+                const pid_t me = ::getpid();
+                (void)!::write(fds[1], &me, sizeof(me));
+                for (;;) ::pause();
+            },
+            "a surface that takes forever"
+        );
+        ::_exit(0);
+    }
+    ::close(fds[1]);
+    pid_t child = 0;
+    ASSERT_EQ(::read(fds[0], &child, sizeof(child)), ssize_t(sizeof(child)));
+    ::close(fds[0]);
+
+    ::kill(parent, SIGKILL);
+    int status = 0;
+    ASSERT_EQ(::waitpid(parent, &status, 0), parent);
+
+    // The child, adopted by this process, must end by itself within 10 s
+    pid_t ended = 0;
+    for (int i = 0; i < 1000 && ended == 0; ++i)
+    {
+        ended = ::waitpid(child, &status, WNOHANG);
+        if (ended == 0) ::usleep(10*1000);
+    }
+    if (ended == 0)
+    {
+        ::kill(child, SIGKILL);
+        ::waitpid(child, &status, 0);
+    }
+    ::prctl(PR_SET_CHILD_SUBREAPER, 0);
+    ASSERT_EQ(ended, child) << "the mesher child outlived its killed parent";
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+}
