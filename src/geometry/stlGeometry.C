@@ -14,6 +14,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <queue>
 #include <sstream>
 
 // * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
@@ -336,6 +337,15 @@ struct pmsh::stlGeometry::impl
 
     double diagonal = 0;
 
+    //- An edge between two triangles of one region that meet at an angle:
+    //  the radius of the surface across it.
+    struct curvedEdge
+    {
+        label a, b;
+        double radius;
+    };
+    std::vector<curvedEdge> curvedEdges;
+
     boxTree::entry triangleEntry(label t) const
     {
         const triVerts& f = surface.triangles[t];
@@ -436,6 +446,25 @@ pmsh::stlGeometry::stlGeometry(const std::string& fileName)
             {
                 smoothNeighbour[t1][nSmooth[t1]++] = t2;
                 smoothNeighbour[t2][nSmooth[t2]++] = t1;
+
+                // The radius of the circle through both centroids with
+                // the normals' angle between them, measured across the
+                // edge (a CAD cylinder's long facets would otherwise add
+                // their axial offset)
+                const double cosAngle =
+                    std::max(-1.0, std::min(1.0, dot(normal[t1], normal[t2])));
+                const double angle = std::acos(cosAngle);
+                if (angle > 1e-6)
+                {
+                    const std::array<label, 2> e = edgeOf(ids[0]);
+                    const vector3 along = s.points[e[1]] - s.points[e[0]];
+                    const vector3 apart = s.centroid(t1) - s.centroid(t2);
+                    const vector3 across =
+                        apart - (dot(apart, along)/magSqr(along))*along;
+                    const double radius =
+                        std::sqrt(magSqr(across))/(2*std::sin(angle/2));
+                    d.curvedEdges.push_back({e[0], e[1], radius});
+                }
             }
         }
     );
@@ -644,54 +673,207 @@ std::string toString(double x)
 }
 
 
-//- One try of Netgen's STL mesher: what it changes, and its parameters.
+//- One try of Netgen's STL mesher: what it changes, and its sizes.
 struct meshAttempt
 {
     std::string change;
-    ng::meshParameters parameters;
+    double maxh;
+    double curvatureRefinement;
 };
 
 
-//- The configured parameters, then the retries. Measured on a curved wall
-//  of radius 1 and thickness 0.002 at maxCellSize 0.3 ("boundary mesh is
+//- The configured sizes, then the retries. Measured on a curved wall of
+//  radius 1 and thickness 0.002 at maxCellSize 0.3 ("boundary mesh is
 //  overlapping"): curvatureRefinement 10 or maxCellSize 0.1 cure it;
 //  Netgen's close-edge restriction 5x stronger with its edge-angle
 //  restriction does not, and makes curvatureRefinement 10 fail too.
-std::vector<meshAttempt> meshAttempts(const ng::meshParameters& configured)
+std::vector<meshAttempt> meshAttempts(double maxh, double curvatureRefinement)
 {
-    std::vector<meshAttempt> attempts{{"", configured}};
+    std::vector<meshAttempt> attempts{{"", maxh, curvatureRefinement}};
 
     // Smaller sizes on curved faces: a chord of a curved wall sags by
     // h^2/(8 radius) = radius/(8 curvatureRefinement^2), and crosses the
     // wall's other side where that exceeds its thickness. Each retry
     // divides the sag by 9.
-    ng::meshParameters curved = configured;
+    double curved = curvatureRefinement;
     for (double least : {10.0, 30.0})
     {
-        curved.curvatureRefinement =
-            std::max(least, 3*curved.curvatureRefinement);
+        curved = std::max(least, 3*curved);
         attempts.push_back
         (
-            {
-                "curvatureRefinement " + toString(curved.curvatureRefinement),
-                curved
-            }
+            {"curvatureRefinement " + toString(curved), maxh, curved}
         );
     }
 
     // Smaller sizes everywhere, for walls or gaps thinner than the
     // triangles on flat faces too
-    ng::meshParameters finer = curved;
-    finer.maxh = configured.maxh/2;
     attempts.push_back
     (
         {
-            "maxCellSize " + toString(finer.maxh) + " and curvatureRefinement "
-          + toString(curved.curvatureRefinement),
-            finer
+            "maxCellSize " + toString(maxh/2) + " and curvatureRefinement "
+          + toString(curved),
+            maxh/2,
+            curved
         }
     );
     return attempts;
+}
+
+} // End anonymous namespace
+} // End namespace pmsh
+
+
+// * * * * * * * * * * * * * * Curvature sizing  * * * * * * * * * * * * * //
+
+pmsh::stlGeometry::curvatureSizing pmsh::stlGeometry::curvatureSizes
+(
+    double curvatureRefinement,
+    double minCellSize,
+    double maxCellSize,
+    double grading
+) const
+{
+    const impl& d = *impl_;
+    const stlSurface& s = d.surface;
+    const label np = label(s.points.size());
+
+    curvatureSizing result;
+    result.solids.resize(s.solidNames.size());
+    if (!(curvatureRefinement > 0))
+    {
+        return result;
+    }
+
+    // Each point's size from the curvature across its edges: the radius
+    // over curvatureRefinement, never below the floor
+    std::vector<double> h(np, maxCellSize);
+    std::vector<char> atFloor(np, 0);
+    for (const impl::curvedEdge& e : d.curvedEdges)
+    {
+        const double wanted = e.radius/curvatureRefinement;
+        const double size = std::max(minCellSize, wanted);
+        for (label v : {e.a, e.b})
+        {
+            if (size < h[v])
+            {
+                h[v] = size;
+                atFloor[v] = wanted < minCellSize;
+            }
+        }
+    }
+
+    // Graded over the surface as `grading` lets sizes grow (Netgen's own
+    // size tree grades STL sizes at 0.3 in space whatever grading says):
+    // h(v) <= h(u) + grading |uv| along the STL's edges, smallest first
+    std::vector<std::vector<label>> neighbours(np);
+    for (const triVerts& f : s.triangles)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            neighbours[f[k]].push_back(f[(k + 1) % 3]);
+            neighbours[f[(k + 1) % 3]].push_back(f[k]);
+        }
+    }
+    using sizeAt = std::pair<double, label>;
+    std::priority_queue<sizeAt, std::vector<sizeAt>, std::greater<sizeAt>> front;
+    for (label v = 0; v < np; ++v)
+    {
+        if (h[v] < maxCellSize)
+        {
+            front.push({h[v], v});
+        }
+    }
+    while (!front.empty())
+    {
+        const sizeAt top = front.top();
+        front.pop();
+        if (top.first > h[top.second])
+        {
+            continue;
+        }
+        for (label u : neighbours[top.second])
+        {
+            const double graded =
+                top.first
+              + grading*std::sqrt(magSqr(s.points[u] - s.points[top.second]));
+            if (graded < h[u])
+            {
+                h[u] = graded;
+                atFloor[u] = 0;
+                front.push({graded, u});
+            }
+        }
+    }
+
+    // Netgen's size is a tree over space: a point's size binds there
+    std::vector<char> counted(np, 0);
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        const triVerts& f = s.triangles[t];
+        curvatureSizing::solidSizes& solid = result.solids[s.solid[t]];
+        double mean = 0;
+        for (label v : f)
+        {
+            mean += h[v]/3;
+            if (h[v] < maxCellSize && !counted[v])
+            {
+                counted[v] = 1;
+                result.points.push_back({s.points[v], h[v]});
+                ++solid.nPoints;
+                solid.nAtFloor += atFloor[v];
+                solid.smallest = std::min(solid.smallest, h[v]);
+            }
+        }
+        // Equilateral triangles of edge h cover sqrt(3)/4 h^2 each
+        const double area = 0.5*std::sqrt(magSqr(s.areaNormal(t)));
+        solid.faces += area*(4/std::sqrt(3.0))/(mean*mean);
+        solid.uniformFaces += area*(4/std::sqrt(3.0))/(maxCellSize*maxCellSize);
+    }
+    return result;
+}
+
+
+namespace pmsh
+{
+namespace
+{
+
+//- The stage-1 log's account of curvature sizing: how much it asked for
+//  and where, so a user sees when it made most of the coarse mesh.
+void logCurvatureSizing
+(
+    const stlGeometry::curvatureSizing& sizing,
+    const std::vector<std::string>& solidNames,
+    double curvatureRefinement,
+    double minCellSize
+)
+{
+    label nPoints = 0, nAtFloor = 0;
+    for (const auto& solid : sizing.solids)
+    {
+        nPoints += solid.nPoints;
+        nAtFloor += solid.nAtFloor;
+    }
+    Info()
+        << "    curvature sizing (curvatureRefinement "
+        << toString(curvatureRefinement) << ", minCellSize "
+        << toString(minCellSize) << "): " << nPoints
+        << " STL points below maxCellSize, " << nAtFloor
+        << " held at minCellSize\n";
+    for (std::size_t i = 0; i < sizing.solids.size(); ++i)
+    {
+        const auto& solid = sizing.solids[i];
+        if (solid.nPoints)
+        {
+            Info()
+                << "        " << solidNames[i] << ": " << solid.nPoints
+                << " points, smallest size " << toString(solid.smallest)
+                << ", about " << label(std::lround(solid.faces))
+                << " boundary faces at these sizes, "
+                << label(std::lround(solid.uniformFaces))
+                << " at maxCellSize\n";
+        }
+    }
 }
 
 
@@ -699,15 +881,16 @@ std::vector<meshAttempt> meshAttempts(const ng::meshParameters& configured)
 //  while Netgen's meshing steps fail.
 ng::volumeMesh retriedStlMesh
 (
-    const std::vector<point3>& points,
-    const std::vector<triVerts>& triangles,
-    const std::vector<std::array<label, 2>>& featureEdges,
+    const stlGeometry& geometry,
     const ng::meshParameters& configured,
+    const coarseMeshParameters& sizes,
     const std::string& fileName
 )
 {
     const std::string what = "STL file \"" + fileName + "\"";
-    const std::vector<meshAttempt> attempts = meshAttempts(configured);
+    const stlSurface& surface = geometry.surface();
+    const std::vector<meshAttempt> attempts =
+        meshAttempts(sizes.maxCellSize, sizes.curvatureRefinement);
 
     // Netgen's STL mesher fails on some valid surfaces where its triangles
     // are too large for the geometry, e.g. "boundary mesh is overlapping"
@@ -715,17 +898,40 @@ ng::volumeMesh retriedStlMesh
     std::vector<std::string> reasons;
     for (std::size_t i = 0; i < attempts.size(); ++i)
     {
+        // Curvature sizes are pmshFoam's, not Netgen's (resthsurfcurvfac):
+        // Netgen's have no floor and follow no grading
+        const stlGeometry::curvatureSizing curvature = geometry.curvatureSizes
+        (
+            attempts[i].curvatureRefinement, sizes.minCellSize,
+            attempts[i].maxh, sizes.grading
+        );
+        ng::meshParameters parameters = configured;
+        parameters.maxh = attempts[i].maxh;
+        parameters.sizePoints.insert
+        (
+            parameters.sizePoints.end(),
+            curvature.points.begin(), curvature.points.end()
+        );
         try
         {
             ng::volumeMesh m = ng::stlVolumeMesh
             (
-                points, triangles, featureEdges, attempts[i].parameters, what
+                surface.points, surface.triangles, geometry.featureEdges(),
+                parameters, what
             );
             if (i > 0)
             {
                 Info()
                     << "    Netgen's STL mesh succeeded at attempt " << i + 1
                     << " (" << attempts[i].change << ")\n";
+            }
+            if (attempts[i].curvatureRefinement > 0)
+            {
+                logCurvatureSizing
+                (
+                    curvature, surface.solidNames,
+                    attempts[i].curvatureRefinement, sizes.minCellSize
+                );
             }
             return m;
         }
@@ -741,7 +947,7 @@ ng::volumeMesh retriedStlMesh
         }
     }
 
-    const ng::meshParameters& last = attempts.back().parameters;
+    const meshAttempt& last = attempts.back();
     msg message;
     message
         << "Netgen could not mesh " << what << " in " << attempts.size()
@@ -759,7 +965,8 @@ ng::volumeMesh retriedStlMesh
         << " face, or two surfaces closer than maxCellSize). In system/pmshDict"
         << " set maxCellSize " << toString(last.maxh/2) << " (or smaller), or"
         << " curvatureRefinement " << toString(2*last.curvatureRefinement)
-        << ", or give the thin part's patch a smaller maxCellSize in"
+        << " with a smaller minCellSize (now " << toString(sizes.minCellSize)
+        << "), or give the thin part's patch a smaller maxCellSize in"
         << " patches; also check the STL for self-intersections.";
     throw FatalError(message, "pmsh::stlGeometry::netgenMesh");
 }
@@ -789,16 +996,11 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
     }
 
     ng::meshParameters mp;
-    mp.maxh = parameters.maxCellSize;
     mp.grading = parameters.grading;
     mp.surfaceOnly = surfaceOnly;
     mp.regions = parameters.regions;
     mp.sizePoints = parameters.sizePoints;
-    mp.curvatureRefinement = parameters.curvatureRefinement;
-    ng::volumeMesh m = retriedStlMesh
-    (
-        d.surface.points, d.surface.triangles, d.featureEdges, mp, fileName_
-    );
+    ng::volumeMesh m = retriedStlMesh(*this, mp, parameters, fileName_);
 
     // Netgen's boundary vertices lie on the STL up to rounding; a vertex is
     // "on" a region within this distance

@@ -45,7 +45,8 @@
     Ng_STL_MakeEdges creates it (always with grading 0.3) before lines and
     surface are meshed in Ng_STL_GenerateSurfaceMesh: it is restricted in
     between. RestrictLocalH ignores points outside the tree's box;
-  - STL curvature sizing (stlparam.resthsurfcurvenable) is off by default.
+  - STL curvature sizing (stlparam.resthsurfcurvenable) is off by default
+    and has no floor: pmshFoam's own (stlGeometry) comes as size points.
 \*---------------------------------------------------------------------------*/
 
 #include "netgenInterface.H"
@@ -1152,15 +1153,6 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
     mp.maxh = parameters.maxh;
     mp.grading = parameters.grading;
     mp.optsteps_3d = parameters.optimisationSteps;
-
-    // Curvature-based sizes: along every STL edge whose two triangles are
-    // not separated by a feature edge, h <= (radius of the cylinder
-    // through both)/resthsurfcurvfac (Netgen's default: off)
-    if (parameters.curvatureRefinement > 0)
-    {
-        netgen::stlparam.resthsurfcurvenable = 1;
-        netgen::stlparam.resthsurfcurvfac = parameters.curvatureRefinement;
-    }
 
     const char* step = "finding edges";
     try

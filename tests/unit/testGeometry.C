@@ -998,3 +998,63 @@ TEST(stlReader, bodyInABoxIsTwoShellsEachPointingOutOfTheFluid)
         EXPECT_NE(m.find("is oriented inward: the closed surface of solids inlet, outlet, sides (48 triangles"), std::string::npos) << m;
     }
 }
+
+
+// Curvature sizing asks for the radius of curvature over
+// curvatureRefinement, never less than minCellSize, and its sizes grow
+// along the surface by at most grading times the distance. The needle
+// (radius 0.03) wants 0.01 at curvatureRefinement 3.
+TEST(stlGeometry, curvatureSizesKeepTheirFloorAndGrading)
+{
+    const auto g = Geometry::New(dataDir + "needleInBox.stl");
+    const stlGeometry& sg = dynamic_cast<const stlGeometry&>(*g);
+    const stlSurface& s = sg.surface();
+    const double maxh = 2.5, grading = 0.3;
+
+    const auto unbounded = sg.curvatureSizes(3, 1e-6, maxh, grading);
+    double smallest = maxh;
+    for (const sizePoint& p : unbounded.points) smallest = std::min(smallest, p.size);
+    // Centroids near the capsule's poles lie closer to the axis: up to
+    // 1.6x smaller there
+    EXPECT_GT(smallest, 0.01/1.7);
+    EXPECT_LT(smallest, 0.01*1.1);
+
+    const double floor = 0.05;
+    const auto sizing = sg.curvatureSizes(3, floor, maxh, grading);
+    ASSERT_FALSE(sizing.points.empty());
+    std::map<std::array<double, 3>, double> size;
+    for (const sizePoint& p : sizing.points)
+    {
+        EXPECT_GE(p.size, floor*(1 - 1e-12));
+        EXPECT_LT(p.size, maxh);
+        size[{p.p[0], p.p[1], p.p[2]}] = p.size;
+    }
+    auto sizeOf = [&](label v)
+    {
+        const auto it = size.find({s.points[v][0], s.points[v][1], s.points[v][2]});
+        return it == size.end() ? maxh : it->second;
+    };
+    label nEdges = 0;
+    for (const triVerts& f : s.triangles)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            const label a = f[k], b = f[(k + 1) % 3];
+            const double length = std::sqrt(magSqr(s.points[a] - s.points[b]));
+            EXPECT_LE(std::abs(sizeOf(a) - sizeOf(b)), grading*length*(1 + 1e-9) + 1e-12)
+                << "edge " << a << '-' << b;
+            ++nEdges;
+        }
+    }
+    EXPECT_GT(nEdges, 0);
+
+    // Only the body's solid asks for anything; nothing with sizing off
+    const auto& names = s.solidNames;
+    const auto body = std::find(names.begin(), names.end(), "body") - names.begin();
+    for (std::size_t i = 0; i < sizing.solids.size(); ++i)
+    {
+        EXPECT_EQ(sizing.solids[i].nPoints > 0, label(i) == body) << names[i];
+    }
+    EXPECT_GT(sizing.solids[body].nAtFloor, 0);
+    EXPECT_TRUE(sg.curvatureSizes(0, floor, maxh, grading).points.empty());
+}
