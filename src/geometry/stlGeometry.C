@@ -8,6 +8,7 @@
 #include "pmshError.H"
 #include "Info.H"
 #include "matchByPoints.H"
+#include "triangleGeometry.H"
 
 #include <algorithm>
 #include <cmath>
@@ -35,81 +36,6 @@ inline double boxDistSqr(const point3& p, const point3& lo, const point3& hi)
         d2 += d*d;
     }
     return d2;
-}
-
-
-//- Closest point to p on triangle (a, b, c), by the Voronoi regions of its
-//  vertices, edges and interior (Ericson, Real-Time Collision Detection).
-point3 closestOnTriangle(const point3& p, const point3& a, const point3& b, const point3& c)
-{
-    const vector3 ab = b - a;
-    const vector3 ac = c - a;
-    const vector3 ap = p - a;
-    const double d1 = dot(ab, ap);
-    const double d2 = dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0)
-    {
-        return a;
-    }
-
-    const vector3 bp = p - b;
-    const double d3 = dot(ab, bp);
-    const double d4 = dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3)
-    {
-        return b;
-    }
-
-    const double vc = d1*d4 - d3*d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0)
-    {
-        return a + (d1/(d1 - d3))*ab;
-    }
-
-    const vector3 cp = p - c;
-    const double d5 = dot(ab, cp);
-    const double d6 = dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6)
-    {
-        return c;
-    }
-
-    const double vb = d5*d2 - d1*d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0)
-    {
-        return a + (d2/(d2 - d6))*ac;
-    }
-
-    const double va = d3*d6 - d5*d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    {
-        return b + ((d4 - d3)/((d4 - d3) + (d5 - d6)))*(c - b);
-    }
-
-    const double denom = 1/(va + vb + vc);
-    return a + (vb*denom)*ab + (vc*denom)*ac;
-}
-
-
-//- Closest point to p on segment (a, b).
-point3 closestOnSegment(const point3& p, const point3& a, const point3& b)
-{
-    const vector3 ab = b - a;
-    const double l2 = magSqr(ab);
-    if (!(l2 > 0))
-    {
-        return a;
-    }
-    const double t = dot(p - a, ab)/l2;
-    if (t <= 0)
-    {
-        return a;
-    }
-    if (t >= 1)
-    {
-        return b;
-    }
-    return a + t*ab;
 }
 
 

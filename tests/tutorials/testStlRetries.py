@@ -8,6 +8,9 @@ makeGeometry.py curved_wall): at maxCellSize 0.3 the chords of Netgen's
 triangles sag below the slab's inner face ("Stop meshing since boundary
 mesh is overlapping") when it is thinner than about 0.005.
 
+Shells that touch (a desk standing on the floor of its room) stop pmshFoam
+before Netgen sees them, with a message that names the solids.
+
 Run one test:  python3 testStlRetries.py stlRetries.test_thinCurvedWallMeshesAtARetry
 """
 
@@ -22,6 +25,8 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "data", "geometry"))
 from testSerialTutorials import CaseTest  # noqa: E402
 from makeGeometry import curved_wall, volume, write_ascii  # noqa: E402
+
+GEOMETRY = os.path.join(HERE, "..", "data", "geometry")
 
 OVERLAP = "Stop meshing since boundary mesh is overlapping"
 
@@ -66,6 +71,24 @@ class stlRetries(CaseTest):
             self.assertIn("%s: meshing the volume: %s" % (attempt, OVERLAP), log)
         self.assertRegex(log, r"In system/pmshDict\s+set maxCellSize 0\.075"
                               r" \(or smaller\), or\s+curvatureRefinement 60")
+        self.assertFalse(c.exists("constant/polyMesh"))
+
+    def test_touchingShellsStopBeforeNetgenNamingTheSolids(self):
+        c = self.case("sphereSTL", maxCellSize=0.5, refinementLevels=0)
+        with open(os.path.join(GEOMETRY, "roomWithDesk.stl")) as f, \
+                open(os.path.join(c.dir, "constant/geometry/room.stl"), "w") as out:
+            out.write(f.read())
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/room.stl"')
+        code, log = c.run("pmshFoam", check=False)
+        self.assertNotEqual(code, 0)
+        self.assertIn("FOAM FATAL ERROR", log)
+        self.assertIn("room.stl\": 8 pair(s) of closed surfaces touch or overlap", log)
+        self.assertIn("solid deskLegs", log)
+        self.assertIn("solid room (the outer boundary)", log)
+        self.assertIn("join the touching solids into one closed surface", log)
+        # Stopped before stage 1's Netgen, not by it
+        self.assertNotIn("Stage 1", log)
+        self.assertNotIn("Netgen did not accept", log)
         self.assertFalse(c.exists("constant/polyMesh"))
 
 

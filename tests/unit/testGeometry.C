@@ -1058,3 +1058,94 @@ TEST(stlGeometry, curvatureSizesKeepTheirFloorAndGrading)
     EXPECT_GT(sizing.solids[body].nAtFloor, 0);
     EXPECT_TRUE(sg.curvatureSizes(0, floor, maxh, grading).points.empty());
 }
+
+
+// Touching shells are named, with a point, before Netgen sees them: a
+// desk whose legs stand on the floor of its room and touch its top, and
+// two cubes sharing a face.
+TEST(stlReader, touchingShellsAreNamedWithAPoint)
+{
+    const std::string room = dataDir + "roomWithDesk.stl";
+    const std::string m = errorOf([&] { checkStl(readStl(room), room); });
+    // Each of the four legs touches the top (at its corners) and the floor
+    EXPECT_NE(m.find("roomWithDesk.stl\": 8 pair(s) of closed surfaces touch or overlap"), std::string::npos) << m;
+    EXPECT_NE(m.find("the closed surface of solid deskTop (12 triangles between (1 1 0.6999999881) and (3 2 0.75))\n"
+                     "    and the closed surface of solid deskLegs (12 triangles between (1 1 0) and"
+                     " (1.049999952 1.049999952 0.6999999881))\n"
+                     "        share the point at (1 1 0.6999999881)"), std::string::npos) << m;
+    EXPECT_NE(m.find("the closed surface of solid room (the outer boundary) (12 triangles"), std::string::npos) << m;
+    EXPECT_NE(m.find("touch or overlap at ("), std::string::npos) << m;
+    EXPECT_NE(m.find("... and 3 more"), std::string::npos) << m;
+    EXPECT_NE(m.find("join the touching solids into one closed surface"), std::string::npos) << m;
+    EXPECT_NE(m.find("move them apart"), std::string::npos) << m;
+
+    const std::string cubes = dataDir + "twoCubesSharingAFace.stl";
+    const std::string c = errorOf([&] { checkStl(readStl(cubes), cubes); });
+    EXPECT_NE(c.find("is not manifold"), std::string::npos) << c;
+    EXPECT_NE(c.find("triangles of solids left, right"), std::string::npos) << c;
+    EXPECT_NE(c.find("share faces or edges (touching shells)"), std::string::npos) << c;
+    EXPECT_NE(c.find("join the touching solids"), std::string::npos) << c;
+}
+
+
+// Shells apart, also when one is close (a gap of 1e-4 of the size), pass;
+// two shells touching at one point do not.
+TEST(stlReader, shellsApartPassAndShellsSharingAPointDoNot)
+{
+    for (const char* name : {"sphereInBox.stl", "cylinderInBox.stl", "needleInBox.stl"})
+    {
+        const std::string f = dataDir + name;
+        EXPECT_NO_THROW(checkStl(readStl(f), f)) << name;
+    }
+
+    // A tetrahedron in a box, lifted 1e-3 off its floor, then onto a
+    // corner of a second tetrahedron
+    stlSurface s;
+    s.points = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}};
+    s.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    s.solid.assign(4, 0);
+    s.solidNames = {"outer", "body"};
+    auto addTet = [&s](const point3 o, double a)
+    {
+        const label n = label(s.points.size());
+        s.points.push_back(o);
+        s.points.push_back(o + point3{a, 0, 0});
+        s.points.push_back(o + point3{0, a, 0});
+        s.points.push_back(o + point3{0, 0, a});
+        // Inward: a body in the fluid
+        for (const triVerts& t : {triVerts{0, 1, 2}, triVerts{0, 3, 1}, triVerts{0, 2, 3}, triVerts{1, 3, 2}})
+        {
+            s.triangles.push_back({n + t[0], n + t[1], n + t[2]});
+            s.solid.push_back(1);
+        }
+    };
+    addTet({0.5, 0.5, 1e-3}, 0.5);
+    EXPECT_NO_THROW(checkStl(s, "lifted.stl"));
+
+    stlSurface onFloor = s;
+    onFloor.points[4][2] = 0;
+    onFloor.points[5][2] = 0;
+    onFloor.points[6][2] = 0;
+    onFloor.points[7][2] = 0.5;
+    const std::string m = errorOf([&] { checkStl(onFloor, "onFloor.stl"); });
+    EXPECT_NE(m.find("1 pair(s) of closed surfaces touch or overlap"), std::string::npos) << m;
+    EXPECT_NE(m.find("solid outer (the outer boundary)"), std::string::npos) << m;
+    EXPECT_NE(m.find("solid body (4 triangles"), std::string::npos) << m;
+
+    // A second body whose corner is the first body's apex: one shared
+    // point, no shared edge
+    stlSurface sharing = s;
+    addTet(s.points[7], 0.5);
+    const label apex = 7;
+    const label n = label(s.points.size()) - 4;
+    sharing.points = s.points;
+    for (label t = label(sharing.triangles.size()); t < s.nTriangles(); ++t)
+    {
+        triVerts u = s.triangles[t];
+        for (label& v : u) v = v == n ? apex : v;
+        sharing.triangles.push_back(u);
+        sharing.solid.push_back(1);
+    }
+    const std::string p = errorOf([&] { checkStl(sharing, "sharing.stl"); });
+    EXPECT_NE(p.find("share the point at (0.5 0.5 0.501)"), std::string::npos) << p;
+}
