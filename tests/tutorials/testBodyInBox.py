@@ -132,6 +132,36 @@ class bodyInBox(CaseTest):
     def test_needleNeedsTheFoldRepairNp2(self):
         self.needle(2)
 
+    def coarse(self, geometry, **entries):
+        """Stage 1 alone (r = 0) on geometry: (coarse cells, log)."""
+        c = self.body_case(geometry, **entries)
+        c.set_entry("system/pmshDict", "refinementLevels", 0)
+        _, log = c.run("pmshFoam")
+        return int(re.search(r"\n    coarse cells: (\d+),", log).group(1)), log
+
+    def test_curvatureSizingKeepsItsFloorAndSaysWhereItActs(self):
+        # The CAD cylinder (radius 0.5, 48 facets) at maxCellSize 2.5: its
+        # curvature asks for 0.17, below the default floor 2.5/8
+        off, _ = self.coarse("cylinderInBox.stl", curvatureRefinement=0)
+        floored, log = self.coarse("cylinderInBox.stl")
+        unbounded, _ = self.coarse("cylinderInBox.stl", minCellSize=0.0025)
+        m = re.search(r"\n    curvature sizing \(curvatureRefinement 3, minCellSize 0\.3125\):"
+                      r" (\d+) STL points below maxCellSize, (\d+) held at minCellSize\n"
+                      r"        body: (\d+) points, smallest size ([0-9.e-]+), about (\d+)"
+                      r" boundary faces at these sizes, (\d+) at maxCellSize\n", log)
+        self.assertIsNotNone(m, log)
+        self.assertGreater(int(m.group(2)), 0)
+        self.assertEqual(m.group(1), m.group(3))     # the box's solids: flat
+        self.assertEqual(float(m.group(4)), 0.3125)
+        self.assertGreater(int(m.group(5)), int(m.group(6)))
+        faces = re.search(r"\n    patches \(coarse boundary faces\): inlet \((\d+)\)"
+                          r" outlet \((\d+)\) sides \((\d+)\) body \((\d+)\)\n", log)
+        self.assertIsNotNone(faces, log)
+        self.assertGreater(int(faces.group(4)), 0)
+        # Measured 3119, 3228 and 10051 coarse cells (bench/results/curvature.md)
+        self.assertLess(floored, 1.3 * off)
+        self.assertGreater(unbounded, 2 * off)
+
     def test_bodyOrientedIntoTheFluidIsAnErrorNamingItsSolid(self):
         c = self.body_case("sphereInBox.stl")
         path = os.path.join(c.dir, "constant", "geometry", "sphereInBox.stl")
