@@ -7,6 +7,7 @@
 #include "csgGeometry.H"
 #include "stlGeometry.H"
 #include "stlReader.H"
+#include "partitionVolume.H"
 #include "testUtilities.H"
 
 #include <gtest/gtest.h>
@@ -1057,6 +1058,52 @@ TEST(stlGeometry, curvatureSizesKeepTheirFloorAndGrading)
     }
     EXPECT_GT(sizing.solids[body].nAtFloor, 0);
     EXPECT_TRUE(sg.curvatureSizes(0, floor, maxh, grading).points.empty());
+}
+
+
+// Away from a small feature the sizes grow by at most grading times the
+// distance: a box whose inlet face has a shallow bump at its centre asks
+// for about 2.7 there, and its far corners get no more than that plus
+// grading times their distance, not maxCellSize.
+TEST(stlGeometry, curvatureSizesGrowAwayFromAFeatureAsGradingAllows)
+{
+    stlSurface box = readStl(dataDir + "box.stl");
+    const auto centre = std::find
+    (
+        box.points.begin(), box.points.end(), point3{0, 0.5, 0.5}
+    );
+    ASSERT_NE(centre, box.points.end());
+    (*centre)[0] = -0.01;
+    const tempDir dir("curvatureGrading");
+    writeSurfaceStl(dir/"bump.stl", "box", box.points, box.triangles);
+    const auto g = Geometry::New(dir/"bump.stl");
+    const stlGeometry& sg = dynamic_cast<const stlGeometry&>(*g);
+
+    const double maxh = 100;
+    for (const double grading : {0.1, 0.3, 1.0})
+    {
+        const auto sizing = sg.curvatureSizes(3, 0.01, maxh, grading);
+        double smallest = maxh, largest = 0;
+        point3 at{0, 0, 0};
+        for (const sizePoint& p : sizing.points)
+        {
+            if (p.size < smallest)
+            {
+                smallest = p.size;
+                at = p.p;
+            }
+        }
+        EXPECT_LT(smallest, 10) << grading;
+        // Every point of the box is sized (one connected surface), within
+        // grading times its distance along the surface of the smallest
+        EXPECT_EQ(sizing.points.size(), sg.surface().points.size()) << grading;
+        for (const sizePoint& p : sizing.points)
+        {
+            largest = std::max(largest, p.size);
+            EXPECT_LE(p.size, smallest + grading*4*std::sqrt(magSqr(p.p - at)) + 1e-12);
+        }
+        EXPECT_GT(largest, smallest) << grading;
+    }
 }
 
 
