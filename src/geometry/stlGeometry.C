@@ -11,6 +11,7 @@
 #include "triangleGeometry.H"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -803,8 +804,58 @@ void logCurvatureSizing
 }
 
 
+//- Seconds an attempt of Netgen's STL coarse mesh may take by default: ten
+//  times what it is expected to take, at least two minutes. Measured here
+//  (2 shared cores): about 2000 coarse cells and 500 boundary faces a
+//  second, and the STL's analysis at 20000 triangles a second. The cells
+//  are those of the domain at maxCellSize plus ten a boundary face (the
+//  grading from the surface inwards: 3119 cells for 342 faces in the
+//  cylinder's box).
+double defaultTimeLimit
+(
+    const stlSurface& surface,
+    const stlGeometry::curvatureSizing& sizing,
+    double maxh
+)
+{
+    double faces = 0;
+    for (const auto& solid : sizing.solids)
+    {
+        faces += solid.faces;
+    }
+    const double cells =
+        std::abs(enclosedVolume(surface))/(0.118*maxh*maxh*maxh) + 10*faces;
+    const double expected =
+        surface.nTriangles()/20000.0 + faces/500.0 + cells/2000.0;
+    return std::max(120.0, std::ceil(10*expected));
+}
+
+
+//- What to change when Netgen's STL mesh took too long: fewer, larger
+//  coarse triangles (every retry asks for smaller ones, which take
+//  longer), or more time.
+std::string coarserAdvice(const coarseMeshParameters& sizes, double attemptLimit)
+{
+    std::string advice =
+        "In system/pmshDict, if Netgen was still getting on (its progress"
+        " lines above), raise coarseTimeLimit (now "
+      + toString(attemptLimit) + " s an attempt); else ask for fewer coarse"
+        " triangles: maxCellSize " + toString(2*sizes.maxCellSize)
+      + " (now " + toString(sizes.maxCellSize) + ")";
+    if (sizes.curvatureRefinement > 0)
+    {
+        advice +=
+            ", minCellSize " + toString(2*sizes.minCellSize) + " (now "
+          + toString(sizes.minCellSize) + ") or curvatureRefinement 0 (now "
+          + toString(sizes.curvatureRefinement) + ")";
+    }
+    return advice + "; or simplify the STL";
+}
+
+
 //- Netgen's coarse mesh of the STL surface, retried with smaller sizes
-//  while Netgen's meshing steps fail.
+//  while Netgen's meshing steps fail, each attempt and all of them within
+//  a time limit.
 ng::volumeMesh retriedStlMesh
 (
     const stlGeometry& geometry,
@@ -818,12 +869,45 @@ ng::volumeMesh retriedStlMesh
     const std::vector<meshAttempt> attempts =
         meshAttempts(sizes.maxCellSize, sizes.curvatureRefinement);
 
+    // A surface Netgen cannot mesh well can keep it busy for tens of
+    // minutes (a ship's hull: 25 at "Surface meshing, 99%")
+    const double attemptLimit =
+        sizes.coarseTimeLimit > 0
+      ? sizes.coarseTimeLimit
+      : defaultTimeLimit
+        (
+            surface,
+            geometry.curvatureSizes
+            (
+                sizes.curvatureRefinement, sizes.minCellSize, sizes.maxCellSize,
+                sizes.grading
+            ),
+            sizes.maxCellSize
+        );
+    const double ladderLimit = 2*attemptLimit;
+    Info()
+        << "    time limit: " << toString(attemptLimit) << " s an attempt, "
+        << toString(ladderLimit) << " s for all (coarseTimeLimit"
+        << (sizes.coarseTimeLimit > 0 ? "" : ", from the surface's size")
+        << ")\n";
+    const auto start = std::chrono::steady_clock::now();
+
     // Netgen's STL mesher fails on some valid surfaces where its triangles
     // are too large for the geometry, e.g. "boundary mesh is overlapping"
     // on a thin curved wall: each retry asks for smaller ones
     std::vector<std::string> reasons;
+    bool timedOut = false;
     for (std::size_t i = 0; i < attempts.size(); ++i)
     {
+        const double remaining = ladderLimit - std::chrono::duration<double>
+        (
+            std::chrono::steady_clock::now() - start
+        ).count();
+        if (remaining <= 0)
+        {
+            break;
+        }
+
         // Curvature sizes are pmshFoam's, not Netgen's (resthsurfcurvfac):
         // Netgen's have no floor and follow no grading
         const stlGeometry::curvatureSizing curvature = geometry.curvatureSizes
@@ -833,6 +917,7 @@ ng::volumeMesh retriedStlMesh
         );
         ng::meshParameters parameters = configured;
         parameters.maxh = attempts[i].maxh;
+        parameters.timeLimit = std::min(attemptLimit, remaining);
         parameters.sizePoints.insert
         (
             parameters.sizePoints.end(),
@@ -861,6 +946,14 @@ ng::volumeMesh retriedStlMesh
             }
             return m;
         }
+        catch (const ng::stlMeshingTimeout& e)
+        {
+            // Every later attempt asks for smaller triangles: it would take
+            // longer still
+            reasons.push_back(e.reason());
+            timedOut = true;
+            break;
+        }
         catch (const ng::stlMeshingFailure& e)
         {
             reasons.push_back(e.reason());
@@ -873,17 +966,36 @@ ng::volumeMesh retriedStlMesh
         }
     }
 
-    const meshAttempt& last = attempts.back();
+    const std::size_t nTried = reasons.size();
     msg message;
     message
-        << "Netgen could not mesh " << what << " in " << attempts.size()
-        << " attempts:";
-    for (std::size_t i = 0; i < attempts.size(); ++i)
+        << "Netgen could not mesh " << what << " in " << nTried
+        << (nTried == 1 ? " attempt" : " attempts")
+        << (nTried < attempts.size() ? " of " + std::to_string(attempts.size()) : "")
+        << ":";
+    for (std::size_t i = 0; i < nTried; ++i)
     {
         message
             << "\n    " << i + 1 << " ("
             << (i == 0 ? "as configured" : attempts[i].change) << "): "
             << reasons[i];
+    }
+    if (timedOut)
+    {
+        message
+            << "\nEvery further attempt asks for smaller triangles and would"
+            << " take longer: none was made. "
+            << coarserAdvice(sizes, attemptLimit) << '.';
+        throw FatalError(message, "pmsh::stlGeometry::netgenMesh");
+    }
+
+    const meshAttempt& last = attempts[nTried - 1];
+    if (nTried < attempts.size())
+    {
+        message
+            << "\nThe attempts together reached their time limit of "
+            << toString(ladderLimit) << " s (twice coarseTimeLimit) before "
+            << attempts[nTried].change << " could be tried.";
     }
     message
         << "\nNetgen's triangles are too large for some part of the surface"
@@ -894,6 +1006,12 @@ ng::volumeMesh retriedStlMesh
         << " with a smaller minCellSize (now " << toString(sizes.minCellSize)
         << "), or give the thin part's patch a smaller maxCellSize in"
         << " patches; also check the STL for self-intersections.";
+    if (nTried < attempts.size())
+    {
+        message
+            << " Each of these takes longer: raise coarseTimeLimit (now "
+            << toString(attemptLimit) << " s) with it.";
+    }
     throw FatalError(message, "pmsh::stlGeometry::netgenMesh");
 }
 

@@ -571,7 +571,7 @@ std::vector<std::string> meshSettingsEntries()
         "geometry", "maxCellSize", "grading", "refinementLevels",
         "coarseMesher", "volumeMesher", "optimisationSteps",
         "volumeMesherThreads", "curvatureRefinement", "minCellSize",
-        "patches", "refinementRegions"
+        "coarseTimeLimit", "patches", "refinementRegions"
     };
 }
 
@@ -765,6 +765,16 @@ meshSettings readMeshSettings
     (
         dict, "minCellSize", s.maxCellSize/8, std::numeric_limits<double>::min(),
         s.maxCellSize, false, validMinCellSize.str()
+    );
+
+    // 0 (absent): from the STL's size, when it is known (stlGeometry)
+    s.coarseTimeLimit = bounded
+    (
+        dict, "coarseTimeLimit", 0, std::numeric_limits<double>::min(), 1e7,
+        false,
+        "Valid values are numbers 0 < coarseTimeLimit <= 1e7: the seconds each"
+        " attempt of Netgen's STL coarse mesh may take (all attempts together"
+        " twice that); without the entry, from the surface's size"
     );
 
     if (const entry* e = foam::findEntry(dict, "patches"))

@@ -336,6 +336,7 @@ pmsh::coarseMeshParameters pmsh::coarseParameters
     p.regions = settings.refinementRegions;
     p.curvatureRefinement = settings.curvatureRefinement;
     p.minCellSize = settings.minCellSize;
+    p.coarseTimeLimit = settings.coarseTimeLimit;
     if (settings.hasPatchSizes())
     {
         p.patchMaxCellSize = [settings](const std::string& patch)

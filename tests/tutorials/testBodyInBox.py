@@ -157,6 +157,9 @@ class bodyInBox(CaseTest):
         faces = re.search(r"\n    patches \(coarse boundary faces\): inlet \((\d+)\)"
                           r" outlet \((\d+)\) sides \((\d+)\) body \((\d+)\)\n", log)
         self.assertIsNotNone(faces, log)
+        # The default time limit, from the surface's size: the least here
+        self.assertIn("\n    time limit: 120 s an attempt, 240 s for all"
+                      " (coarseTimeLimit, from the surface's size)\n", log)
         self.assertGreater(int(faces.group(4)), 0)
         # Measured 3119, 3228 and 10051 coarse cells (bench/results/curvature.md)
         self.assertLess(floored, 1.3 * off)

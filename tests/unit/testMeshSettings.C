@@ -315,7 +315,8 @@ TEST_F(meshSettingsTest, unknownEntryIsAnErrorWithASuggestion)
         err,
         "Valid entries are: geometry, maxCellSize, grading, refinementLevels,"
         " coarseMesher, volumeMesher, optimisationSteps, volumeMesherThreads,"
-        " curvatureRefinement, minCellSize, patches, refinementRegions"
+        " curvatureRefinement, minCellSize, coarseTimeLimit, patches,"
+        " refinementRegions"
     );
 
     // Nothing close: no guess, still the list
@@ -744,6 +745,19 @@ TEST_F(meshSettingsTest, minCellSizeIsAFloorBelowMaxCellSize)
         EXPECT_HAS(err, std::string("Entry 'minCellSize' is ") + bad);
         EXPECT_HAS(err, "Valid values are numbers 0 < minCellSize <= maxCellSize");
         EXPECT_HAS(err, "STL curvature sizing");
+    }
+}
+
+TEST_F(meshSettingsTest, coarseTimeLimitIsAPositiveNumberOfSeconds)
+{
+    // 0: from the surface's size, when the STL is read
+    EXPECT_DOUBLE_EQ(read(minimal()).coarseTimeLimit, 0);
+    EXPECT_DOUBLE_EQ(read(minimal() + "coarseTimeLimit 0.5;\n").coarseTimeLimit, 0.5);
+    for (const char* bad : {"0", "-1", "1e8", "long"})
+    {
+        const std::string err = errorFor(minimal() + "coarseTimeLimit " + bad + ";\n");
+        EXPECT_HAS(err, "Entry 'coarseTimeLimit' is ");
+        EXPECT_HAS(err, "Valid values are numbers 0 < coarseTimeLimit <= 1e7");
     }
 }
 
