@@ -636,6 +636,9 @@ void pmsh::reportSummary
         << "  \"bytesSentPerRank\": " << jsonArray(bytesSentPerRank) << ",\n"
         << "  \"estimatedFineCells\": " << estimate.fineCells << ",\n"
         << "  \"estimatedFineCellsLargestRank\": " << estimate.fineCellsPerRank << ",\n"
+        << "  \"estimateShares\": {\"volume\": " << estimate.volumeShare
+        << ", \"regions\": " << estimate.regionShare << ", \"boundary\": "
+        << estimate.boundaryShare << "},\n"
         << "  \"estimatedPeakMemoryPerRankBytes\": " << estimate.bytesPerRank << ",\n"
         << "  \"quality\": {\n";
     // One entry per measure: overall, then per rank
