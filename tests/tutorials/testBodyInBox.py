@@ -66,9 +66,11 @@ class bodyInBox(CaseTest):
                     "    %s { %s }\n" % (patch, bc) for patch, bc in bcs.items())))
         return c
 
-    def mesh(self, geometry, np, **entries):
+    def mesh(self, geometry, np, estimate_within_band=True, **entries):
         """Mesh, checkMesh must say Mesh OK, the patches are the solids /
-        bcnames with their types; returns (case, summary.json)."""
+        bcnames with their types, the estimate after stage 1 within
+        0.67-1.5 of the fine cells unless told otherwise; returns (case,
+        summary.json)."""
         c = self.body_case(geometry, **entries)
         _, log = c.run("pmshFoam", np=np)
         self.assertIn("End", log)
@@ -84,6 +86,15 @@ class bodyInBox(CaseTest):
             self.assertRegex(text, r"(?s)\b%s\s*\{\s*type\s+%s;" % (name, kind))
         with open(os.path.join(c.dir, "postProcessing", "pmshFoam", "summary.json")) as f:
             summary = json.load(f)
+        # The estimate after stage 1 within its band (bench/estimates),
+        # with the shares of its terms
+        ratio = summary["estimatedFineCells"] / summary["fineCells"]
+        if estimate_within_band:
+            self.assertGreaterEqual(ratio, 0.67)
+            self.assertLessEqual(ratio, 1.5)
+        shares = summary["estimateShares"]
+        self.assertAlmostEqual(shares["volume"] + shares["regions"] + shares["boundary"], 1, 6)
+        self.assertGreater(shares["boundary"], 0)
         self.assertIn("pointsOffGeometry", summary)
         self.assertIn("maxDistanceOffGeometry", summary)
         # Far below the body's radius (0.5) and the fine cells (~0.3 here)
@@ -117,7 +128,11 @@ class bodyInBox(CaseTest):
     # the fold repair. Without curvature sizing, which would otherwise
     # give the needle coarse faces small enough not to fold.
     def needle(self, np):
-        c, summary = self.mesh("needleInBox.stl", np, curvatureRefinement=0)
+        # The estimate's known miss: Netgen fills round a body thinner
+        # than the coarse cells 2.5x more densely than estimated (README,
+        # Memory)
+        c, summary = self.mesh("needleInBox.stl", np, estimate_within_band=False,
+                               curvatureRefinement=0)
         self.assertGreater(summary["pointsOffGeometry"], 0)
         # Off by less than the needle's radius (0.03)
         self.assertLess(summary["maxDistanceOffGeometry"], 0.03)
