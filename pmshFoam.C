@@ -281,6 +281,7 @@ int main(int argc, char *argv[])
         // Expected fine cells of every coarse cell (the master's): the
         // partition balances them, the memory estimate sums them
         std::vector<double> fineWeights;
+        pmsh::fineCellWeightTerms weightTerms;
         pmsh::failTogether(comm, [&]
         {
             if (comm.master())
@@ -288,15 +289,20 @@ int main(int argc, char *argv[])
                 fineWeights = pmsh::fineCellWeights
                 (
                     coarse, settings.maxCellSize, settings.refinementLevels,
-                    settings.refinementRegions
+                    settings.refinementRegions, &weightTerms
                 );
             }
         });
         pmsh::memoryEstimate estimate;
         pmsh::failTogether(comm, [&]
         {
-            const double weightSum =
-                comm.sum(std::accumulate(fineWeights.begin(), fineWeights.end(), 0.0));
+            // The sizes of the cells graded from a small body to
+            // maxCellSize count more than the partition's weights say
+            const double weightSum = comm.sum
+            (
+                weightTerms.volumeGraded + weightTerms.regionsGraded
+              + weightTerms.boundary
+            );
 
             // Stop before the expensive stages if the fine mesh cannot fit
             estimate = pmsh::estimateAndCheckMemory
@@ -305,6 +311,15 @@ int main(int argc, char *argv[])
                 weightSum*std::pow(8.0, settings.refinementLevels),
                 !pmsh::foam::found(args, "noMemoryCheck")
             );
+            const double termSum =
+                weightTerms.volumeGraded + weightTerms.regionsGraded
+              + weightTerms.boundary;
+            if (termSum > 0)
+            {
+                estimate.volumeShare = weightTerms.volumeGraded/termSum;
+                estimate.regionShare = weightTerms.regionsGraded/termSum;
+                estimate.boundaryShare = weightTerms.boundary/termSum;
+            }
             // The patches are known now: every field must cover them all
             pmsh::checkPatchCoverage(fieldTemplates, coarse.patches);
         });

@@ -105,7 +105,11 @@ CoarseMesh meshOnMaster(const Geometry& geometry, const coarseMeshParameters& pa
     (
         VolumeMesher::NewAll(parameters.mesher), coarse.points, triangles,
         triangleZone, coarse.zones, p, parameters.failedSurfaceFile,
-        "Try coarseMesher netgen, or another maxCellSize, in system/pmshDict."
+        // Every mesher (hxt and netgen) has just been tried: suggesting
+        // coarseMesher netgen would suggest what failed
+        "Every volume mesher was tried on it. In system/pmshDict try another"
+        " maxCellSize (Netgen's coarse surface is made anew), or look at the"
+        " surface written for gaps or walls thinner than its triangles."
     );
     coarse.points = std::move(volume.mesh.points);
     coarse.tets = std::move(volume.mesh.tets);

@@ -8,12 +8,15 @@
 #include "pmshError.H"
 #include "Info.H"
 #include "matchByPoints.H"
+#include "triangleGeometry.H"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iterator>
 #include <limits>
 #include <map>
+#include <queue>
 #include <sstream>
 
 // * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
@@ -34,81 +37,6 @@ inline double boxDistSqr(const point3& p, const point3& lo, const point3& hi)
         d2 += d*d;
     }
     return d2;
-}
-
-
-//- Closest point to p on triangle (a, b, c), by the Voronoi regions of its
-//  vertices, edges and interior (Ericson, Real-Time Collision Detection).
-point3 closestOnTriangle(const point3& p, const point3& a, const point3& b, const point3& c)
-{
-    const vector3 ab = b - a;
-    const vector3 ac = c - a;
-    const vector3 ap = p - a;
-    const double d1 = dot(ab, ap);
-    const double d2 = dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0)
-    {
-        return a;
-    }
-
-    const vector3 bp = p - b;
-    const double d3 = dot(ab, bp);
-    const double d4 = dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3)
-    {
-        return b;
-    }
-
-    const double vc = d1*d4 - d3*d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0)
-    {
-        return a + (d1/(d1 - d3))*ab;
-    }
-
-    const vector3 cp = p - c;
-    const double d5 = dot(ab, cp);
-    const double d6 = dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6)
-    {
-        return c;
-    }
-
-    const double vb = d5*d2 - d1*d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0)
-    {
-        return a + (d2/(d2 - d6))*ac;
-    }
-
-    const double va = d3*d6 - d5*d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    {
-        return b + ((d4 - d3)/((d4 - d3) + (d5 - d6)))*(c - b);
-    }
-
-    const double denom = 1/(va + vb + vc);
-    return a + (vb*denom)*ab + (vc*denom)*ac;
-}
-
-
-//- Closest point to p on segment (a, b).
-point3 closestOnSegment(const point3& p, const point3& a, const point3& b)
-{
-    const vector3 ab = b - a;
-    const double l2 = magSqr(ab);
-    if (!(l2 > 0))
-    {
-        return a;
-    }
-    const double t = dot(p - a, ab)/l2;
-    if (t <= 0)
-    {
-        return a;
-    }
-    if (t >= 1)
-    {
-        return b;
-    }
-    return a + t*ab;
 }
 
 
@@ -336,6 +264,15 @@ struct pmsh::stlGeometry::impl
 
     double diagonal = 0;
 
+    //- An edge between two triangles of one region that meet at an angle:
+    //  the radius of the surface across it.
+    struct curvedEdge
+    {
+        label a, b;
+        double radius;
+    };
+    std::vector<curvedEdge> curvedEdges;
+
     boxTree::entry triangleEntry(label t) const
     {
         const triVerts& f = surface.triangles[t];
@@ -436,6 +373,25 @@ pmsh::stlGeometry::stlGeometry(const std::string& fileName)
             {
                 smoothNeighbour[t1][nSmooth[t1]++] = t2;
                 smoothNeighbour[t2][nSmooth[t2]++] = t1;
+
+                // The radius of the circle through both centroids with
+                // the normals' angle between them, measured across the
+                // edge (a CAD cylinder's long facets would otherwise add
+                // their axial offset)
+                const double cosAngle =
+                    std::max(-1.0, std::min(1.0, dot(normal[t1], normal[t2])));
+                const double angle = std::acos(cosAngle);
+                if (angle > 1e-6)
+                {
+                    const std::array<label, 2> e = edgeOf(ids[0]);
+                    const vector3 along = s.points[e[1]] - s.points[e[0]];
+                    const vector3 apart = s.centroid(t1) - s.centroid(t2);
+                    const vector3 across =
+                        apart - (dot(apart, along)/magSqr(along))*along;
+                    const double radius =
+                        std::sqrt(magSqr(across))/(2*std::sin(angle/2));
+                    d.curvedEdges.push_back({e[0], e[1], radius});
+                }
             }
         }
     );
@@ -644,82 +600,335 @@ std::string toString(double x)
 }
 
 
-//- One try of Netgen's STL mesher: what it changes, and its parameters.
+//- One try of Netgen's STL mesher: what it changes, and its sizes.
 struct meshAttempt
 {
     std::string change;
-    ng::meshParameters parameters;
+    double maxh;
+    double curvatureRefinement;
 };
 
 
-//- The configured parameters, then the retries. Measured on a curved wall
-//  of radius 1 and thickness 0.002 at maxCellSize 0.3 ("boundary mesh is
+//- The configured sizes, then the retries. Measured on a curved wall of
+//  radius 1 and thickness 0.002 at maxCellSize 0.3 ("boundary mesh is
 //  overlapping"): curvatureRefinement 10 or maxCellSize 0.1 cure it;
 //  Netgen's close-edge restriction 5x stronger with its edge-angle
 //  restriction does not, and makes curvatureRefinement 10 fail too.
-std::vector<meshAttempt> meshAttempts(const ng::meshParameters& configured)
+std::vector<meshAttempt> meshAttempts(double maxh, double curvatureRefinement)
 {
-    std::vector<meshAttempt> attempts{{"", configured}};
+    std::vector<meshAttempt> attempts{{"", maxh, curvatureRefinement}};
 
     // Smaller sizes on curved faces: a chord of a curved wall sags by
     // h^2/(8 radius) = radius/(8 curvatureRefinement^2), and crosses the
     // wall's other side where that exceeds its thickness. Each retry
     // divides the sag by 9.
-    ng::meshParameters curved = configured;
+    double curved = curvatureRefinement;
     for (double least : {10.0, 30.0})
     {
-        curved.curvatureRefinement =
-            std::max(least, 3*curved.curvatureRefinement);
+        curved = std::max(least, 3*curved);
         attempts.push_back
         (
-            {
-                "curvatureRefinement " + toString(curved.curvatureRefinement),
-                curved
-            }
+            {"curvatureRefinement " + toString(curved), maxh, curved}
         );
     }
 
     // Smaller sizes everywhere, for walls or gaps thinner than the
     // triangles on flat faces too
-    ng::meshParameters finer = curved;
-    finer.maxh = configured.maxh/2;
     attempts.push_back
     (
         {
-            "maxCellSize " + toString(finer.maxh) + " and curvatureRefinement "
-          + toString(curved.curvatureRefinement),
-            finer
+            "maxCellSize " + toString(maxh/2) + " and curvatureRefinement "
+          + toString(curved),
+            maxh/2,
+            curved
         }
     );
     return attempts;
 }
 
+} // End anonymous namespace
+} // End namespace pmsh
+
+
+// * * * * * * * * * * * * * * Curvature sizing  * * * * * * * * * * * * * //
+
+pmsh::stlGeometry::curvatureSizing pmsh::stlGeometry::curvatureSizes
+(
+    double curvatureRefinement,
+    double minCellSize,
+    double maxCellSize,
+    double grading
+) const
+{
+    const impl& d = *impl_;
+    const stlSurface& s = d.surface;
+    const label np = label(s.points.size());
+
+    curvatureSizing result;
+    result.solids.resize(s.solidNames.size());
+    if (!(curvatureRefinement > 0))
+    {
+        return result;
+    }
+
+    // Each point's size from the curvature across its edges: the radius
+    // over curvatureRefinement, never below the floor
+    std::vector<double> h(np, maxCellSize);
+    std::vector<char> atFloor(np, 0);
+    for (const impl::curvedEdge& e : d.curvedEdges)
+    {
+        const double wanted = e.radius/curvatureRefinement;
+        const double size = std::max(minCellSize, wanted);
+        for (label v : {e.a, e.b})
+        {
+            if (size < h[v])
+            {
+                h[v] = size;
+                atFloor[v] = wanted < minCellSize;
+            }
+        }
+    }
+
+    // Graded over the surface as `grading` lets sizes grow (Netgen's own
+    // size tree grades STL sizes at 0.3 in space whatever grading says):
+    // h(v) <= h(u) + grading |uv| along the STL's edges, smallest first
+    std::vector<std::vector<label>> neighbours(np);
+    for (const triVerts& f : s.triangles)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            neighbours[f[k]].push_back(f[(k + 1) % 3]);
+            neighbours[f[(k + 1) % 3]].push_back(f[k]);
+        }
+    }
+    using sizeAt = std::pair<double, label>;
+    std::priority_queue<sizeAt, std::vector<sizeAt>, std::greater<sizeAt>> front;
+    for (label v = 0; v < np; ++v)
+    {
+        if (h[v] < maxCellSize)
+        {
+            front.push({h[v], v});
+        }
+    }
+    while (!front.empty())
+    {
+        const sizeAt top = front.top();
+        front.pop();
+        if (top.first > h[top.second])
+        {
+            continue;
+        }
+        for (label u : neighbours[top.second])
+        {
+            const double graded =
+                top.first
+              + grading*std::sqrt(magSqr(s.points[u] - s.points[top.second]));
+            if (graded < h[u])
+            {
+                h[u] = graded;
+                atFloor[u] = 0;
+                front.push({graded, u});
+            }
+        }
+    }
+
+    // Netgen's size is a tree over space: a point's size binds there
+    std::vector<char> counted(np, 0);
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        const triVerts& f = s.triangles[t];
+        curvatureSizing::solidSizes& solid = result.solids[s.solid[t]];
+        double mean = 0;
+        for (label v : f)
+        {
+            mean += h[v]/3;
+            if (h[v] < maxCellSize && !counted[v])
+            {
+                counted[v] = 1;
+                result.points.push_back({s.points[v], h[v]});
+                ++solid.nPoints;
+                solid.nAtFloor += atFloor[v];
+                solid.smallest = std::min(solid.smallest, h[v]);
+            }
+        }
+        // Equilateral triangles of edge h cover sqrt(3)/4 h^2 each
+        const double area = 0.5*std::sqrt(magSqr(s.areaNormal(t)));
+        solid.faces += area*(4/std::sqrt(3.0))/(mean*mean);
+        solid.uniformFaces += area*(4/std::sqrt(3.0))/(maxCellSize*maxCellSize);
+    }
+    return result;
+}
+
+
+namespace pmsh
+{
+namespace
+{
+
+//- The stage-1 log's account of curvature sizing: how much it asked for
+//  and where, so a user sees when it made most of the coarse mesh.
+void logCurvatureSizing
+(
+    const stlGeometry::curvatureSizing& sizing,
+    const std::vector<std::string>& solidNames,
+    double curvatureRefinement,
+    double minCellSize
+)
+{
+    label nPoints = 0, nAtFloor = 0;
+    for (const auto& solid : sizing.solids)
+    {
+        nPoints += solid.nPoints;
+        nAtFloor += solid.nAtFloor;
+    }
+    Info()
+        << "    curvature sizing (curvatureRefinement "
+        << toString(curvatureRefinement) << ", minCellSize "
+        << toString(minCellSize) << "): " << nPoints
+        << " STL points below maxCellSize, " << nAtFloor
+        << " held at minCellSize\n";
+    for (std::size_t i = 0; i < sizing.solids.size(); ++i)
+    {
+        const auto& solid = sizing.solids[i];
+        if (solid.nPoints)
+        {
+            Info()
+                << "        " << solidNames[i] << ": " << solid.nPoints
+                << " points, smallest size " << toString(solid.smallest)
+                << ", about " << label(std::lround(solid.faces))
+                << " boundary faces at these sizes, "
+                << label(std::lround(solid.uniformFaces))
+                << " at maxCellSize\n";
+        }
+    }
+}
+
+
+//- Seconds an attempt of Netgen's STL coarse mesh may take by default: ten
+//  times what it is expected to take, at least two minutes. Measured here
+//  (2 shared cores): about 2000 coarse cells and 500 boundary faces a
+//  second, and the STL's analysis at 20000 triangles a second. The cells
+//  are those of the domain at maxCellSize plus ten a boundary face (the
+//  grading from the surface inwards: 3119 cells for 342 faces in the
+//  cylinder's box).
+double defaultTimeLimit
+(
+    const stlSurface& surface,
+    const stlGeometry::curvatureSizing& sizing,
+    double maxh
+)
+{
+    double faces = 0;
+    for (const auto& solid : sizing.solids)
+    {
+        faces += solid.faces;
+    }
+    const double cells =
+        std::abs(enclosedVolume(surface))/(0.118*maxh*maxh*maxh) + 10*faces;
+    const double expected =
+        surface.nTriangles()/20000.0 + faces/500.0 + cells/2000.0;
+    return std::max(120.0, std::ceil(10*expected));
+}
+
+
+//- What to change when Netgen's STL mesh took too long: fewer, larger
+//  coarse triangles (every retry asks for smaller ones, which take
+//  longer), or more time.
+std::string coarserAdvice(const coarseMeshParameters& sizes, double attemptLimit)
+{
+    std::string advice =
+        "In system/pmshDict, if Netgen was still getting on (its progress"
+        " lines above), raise coarseTimeLimit (now "
+      + toString(attemptLimit) + " s an attempt); else ask for fewer coarse"
+        " triangles: maxCellSize " + toString(2*sizes.maxCellSize)
+      + " (now " + toString(sizes.maxCellSize) + ")";
+    if (sizes.curvatureRefinement > 0)
+    {
+        advice +=
+            ", minCellSize " + toString(2*sizes.minCellSize) + " (now "
+          + toString(sizes.minCellSize) + ") or curvatureRefinement 0 (now "
+          + toString(sizes.curvatureRefinement) + ")";
+    }
+    return advice + "; or simplify the STL";
+}
+
 
 //- Netgen's coarse mesh of the STL surface, retried with smaller sizes
-//  while Netgen's meshing steps fail.
+//  while Netgen's meshing steps fail, each attempt and all of them within
+//  a time limit.
 ng::volumeMesh retriedStlMesh
 (
-    const std::vector<point3>& points,
-    const std::vector<triVerts>& triangles,
-    const std::vector<std::array<label, 2>>& featureEdges,
+    const stlGeometry& geometry,
     const ng::meshParameters& configured,
+    const coarseMeshParameters& sizes,
     const std::string& fileName
 )
 {
     const std::string what = "STL file \"" + fileName + "\"";
-    const std::vector<meshAttempt> attempts = meshAttempts(configured);
+    const stlSurface& surface = geometry.surface();
+    const std::vector<meshAttempt> attempts =
+        meshAttempts(sizes.maxCellSize, sizes.curvatureRefinement);
+
+    // A surface Netgen cannot mesh well can keep it busy for tens of
+    // minutes (a ship's hull: 25 at "Surface meshing, 99%")
+    const double attemptLimit =
+        sizes.coarseTimeLimit > 0
+      ? sizes.coarseTimeLimit
+      : defaultTimeLimit
+        (
+            surface,
+            geometry.curvatureSizes
+            (
+                sizes.curvatureRefinement, sizes.minCellSize, sizes.maxCellSize,
+                sizes.grading
+            ),
+            sizes.maxCellSize
+        );
+    const double ladderLimit = 2*attemptLimit;
+    Info()
+        << "    time limit: " << toString(attemptLimit) << " s an attempt, "
+        << toString(ladderLimit) << " s for all (coarseTimeLimit"
+        << (sizes.coarseTimeLimit > 0 ? "" : ", from the surface's size")
+        << ")\n";
+    const auto start = std::chrono::steady_clock::now();
 
     // Netgen's STL mesher fails on some valid surfaces where its triangles
     // are too large for the geometry, e.g. "boundary mesh is overlapping"
     // on a thin curved wall: each retry asks for smaller ones
     std::vector<std::string> reasons;
+    bool timedOut = false;
     for (std::size_t i = 0; i < attempts.size(); ++i)
     {
+        const double remaining = ladderLimit - std::chrono::duration<double>
+        (
+            std::chrono::steady_clock::now() - start
+        ).count();
+        if (remaining <= 0)
+        {
+            break;
+        }
+
+        // Curvature sizes are pmshFoam's, not Netgen's (resthsurfcurvfac):
+        // Netgen's have no floor and follow no grading
+        const stlGeometry::curvatureSizing curvature = geometry.curvatureSizes
+        (
+            attempts[i].curvatureRefinement, sizes.minCellSize,
+            attempts[i].maxh, sizes.grading
+        );
+        ng::meshParameters parameters = configured;
+        parameters.maxh = attempts[i].maxh;
+        parameters.timeLimit = std::min(attemptLimit, remaining);
+        parameters.sizePoints.insert
+        (
+            parameters.sizePoints.end(),
+            curvature.points.begin(), curvature.points.end()
+        );
         try
         {
             ng::volumeMesh m = ng::stlVolumeMesh
             (
-                points, triangles, featureEdges, attempts[i].parameters, what
+                surface.points, surface.triangles, geometry.featureEdges(),
+                parameters, what
             );
             if (i > 0)
             {
@@ -727,7 +936,23 @@ ng::volumeMesh retriedStlMesh
                     << "    Netgen's STL mesh succeeded at attempt " << i + 1
                     << " (" << attempts[i].change << ")\n";
             }
+            if (attempts[i].curvatureRefinement > 0)
+            {
+                logCurvatureSizing
+                (
+                    curvature, surface.solidNames,
+                    attempts[i].curvatureRefinement, sizes.minCellSize
+                );
+            }
             return m;
+        }
+        catch (const ng::stlMeshingTimeout& e)
+        {
+            // Every later attempt asks for smaller triangles: it would take
+            // longer still
+            reasons.push_back(e.reason());
+            timedOut = true;
+            break;
         }
         catch (const ng::stlMeshingFailure& e)
         {
@@ -741,17 +966,36 @@ ng::volumeMesh retriedStlMesh
         }
     }
 
-    const ng::meshParameters& last = attempts.back().parameters;
+    const std::size_t nTried = reasons.size();
     msg message;
     message
-        << "Netgen could not mesh " << what << " in " << attempts.size()
-        << " attempts:";
-    for (std::size_t i = 0; i < attempts.size(); ++i)
+        << "Netgen could not mesh " << what << " in " << nTried
+        << (nTried == 1 ? " attempt" : " attempts")
+        << (nTried < attempts.size() ? " of " + std::to_string(attempts.size()) : "")
+        << ":";
+    for (std::size_t i = 0; i < nTried; ++i)
     {
         message
             << "\n    " << i + 1 << " ("
             << (i == 0 ? "as configured" : attempts[i].change) << "): "
             << reasons[i];
+    }
+    if (timedOut)
+    {
+        message
+            << "\nEvery further attempt asks for smaller triangles and would"
+            << " take longer: none was made. "
+            << coarserAdvice(sizes, attemptLimit) << '.';
+        throw FatalError(message, "pmsh::stlGeometry::netgenMesh");
+    }
+
+    const meshAttempt& last = attempts[nTried - 1];
+    if (nTried < attempts.size())
+    {
+        message
+            << "\nThe attempts together reached their time limit of "
+            << toString(ladderLimit) << " s (twice coarseTimeLimit) before "
+            << attempts[nTried].change << " could be tried.";
     }
     message
         << "\nNetgen's triangles are too large for some part of the surface"
@@ -759,8 +1003,15 @@ ng::volumeMesh retriedStlMesh
         << " face, or two surfaces closer than maxCellSize). In system/pmshDict"
         << " set maxCellSize " << toString(last.maxh/2) << " (or smaller), or"
         << " curvatureRefinement " << toString(2*last.curvatureRefinement)
-        << ", or give the thin part's patch a smaller maxCellSize in"
+        << " with a smaller minCellSize (now " << toString(sizes.minCellSize)
+        << "), or give the thin part's patch a smaller maxCellSize in"
         << " patches; also check the STL for self-intersections.";
+    if (nTried < attempts.size())
+    {
+        message
+            << " Each of these takes longer: raise coarseTimeLimit (now "
+            << toString(attemptLimit) << " s) with it.";
+    }
     throw FatalError(message, "pmsh::stlGeometry::netgenMesh");
 }
 
@@ -789,16 +1040,11 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
     }
 
     ng::meshParameters mp;
-    mp.maxh = parameters.maxCellSize;
     mp.grading = parameters.grading;
     mp.surfaceOnly = surfaceOnly;
     mp.regions = parameters.regions;
     mp.sizePoints = parameters.sizePoints;
-    mp.curvatureRefinement = parameters.curvatureRefinement;
-    ng::volumeMesh m = retriedStlMesh
-    (
-        d.surface.points, d.surface.triangles, d.featureEdges, mp, fileName_
-    );
+    ng::volumeMesh m = retriedStlMesh(*this, mp, parameters, fileName_);
 
     // Netgen's boundary vertices lie on the STL up to rounding; a vertex is
     // "on" a region within this distance

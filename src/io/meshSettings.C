@@ -3,6 +3,7 @@
 #include "VolumeMesher.H"
 
 #include <algorithm>
+#include <sstream>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -569,8 +570,8 @@ std::vector<std::string> meshSettingsEntries()
     {
         "geometry", "maxCellSize", "grading", "refinementLevels",
         "coarseMesher", "volumeMesher", "optimisationSteps",
-        "volumeMesherThreads", "curvatureRefinement", "patches",
-        "refinementRegions"
+        "volumeMesherThreads", "curvatureRefinement", "minCellSize",
+        "coarseTimeLimit", "patches", "refinementRegions"
     };
 }
 
@@ -749,6 +750,31 @@ meshSettings readMeshSettings
         dict, "curvatureRefinement", 3, 0, 100, false,
         "Valid values are numbers 0 <= curvatureRefinement <= 100: coarse"
         " cells per radian of STL surface curvature (0 = off)"
+    );
+
+    // The floor of curvature sizing: without one a finely tessellated
+    // fillet or tip asks for cells far below maxCellSize and the coarse
+    // mesh (and every level after it) blows the budget. maxCellSize/8:
+    // bench/results/curvature.md
+    std::ostringstream validMinCellSize;
+    validMinCellSize
+        << "Valid values are numbers 0 < minCellSize <= maxCellSize ("
+        << s.maxCellSize << "): the smallest coarse cell size that STL"
+        << " curvature sizing may ask for (default maxCellSize/8)";
+    s.minCellSize = bounded
+    (
+        dict, "minCellSize", s.maxCellSize/8, std::numeric_limits<double>::min(),
+        s.maxCellSize, false, validMinCellSize.str()
+    );
+
+    // 0 (absent): from the STL's size, when it is known (stlGeometry)
+    s.coarseTimeLimit = bounded
+    (
+        dict, "coarseTimeLimit", 0, std::numeric_limits<double>::min(), 1e7,
+        false,
+        "Valid values are numbers 0 < coarseTimeLimit <= 1e7: the seconds each"
+        " attempt of Netgen's STL coarse mesh may take (all attempts together"
+        " twice that); without the entry, from the surface's size"
     );
 
     if (const entry* e = foam::findEntry(dict, "patches"))

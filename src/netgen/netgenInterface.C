@@ -45,7 +45,8 @@
     Ng_STL_MakeEdges creates it (always with grading 0.3) before lines and
     surface are meshed in Ng_STL_GenerateSurfaceMesh: it is restricted in
     between. RestrictLocalH ignores points outside the tree's box;
-  - STL curvature sizing (stlparam.resthsurfcurvenable) is off by default.
+  - STL curvature sizing (stlparam.resthsurfcurvenable) is off by default
+    and has no floor: pmshFoam's own (stlGeometry) comes as size points.
 \*---------------------------------------------------------------------------*/
 
 #include "netgenInterface.H"
@@ -53,6 +54,7 @@
 #include "tetFaceMatching.H"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -467,44 +469,119 @@ pmsh::ng::volumeMesh convertMesh(const netgen::Mesh& mesh, const std::string& wh
 //  seconds with the task it is on and how far it is: Netgen publishes both
 //  in netgen::multithread for its GUI to poll from another thread, which
 //  is what this does. Written to the console the session took cout from.
+//  Netgen's percentage can sit at 99% for minutes: given the mesh, the
+//  line also counts its surface triangles and tets, which move. Given a
+//  time limit, it sets netgen::multithread.terminate when the limit
+//  passes: Netgen's meshing loops poll it and return (reporting success).
 class progressReport
 {
     std::ostream out_;
     const std::chrono::steady_clock::time_point start_;
+    //- Read while Netgen adds to it (counts only: a stale count is fine)
+    const netgen::Mesh* mesh_;
+    const double timeLimit_;
+    //- pmshFoam's step (Netgen's own task name is often empty)
+    std::atomic<const char*> step_{nullptr};
     std::mutex mutex_;
     std::condition_variable wake_;
     bool done_ = false;
+    bool timedOut_ = false;
+    std::string taskAtTimeout_;
     std::thread thread_;
+
+    double seconds() const
+    {
+        return std::chrono::duration<double>
+        (
+            std::chrono::steady_clock::now() - start_
+        ).count();
+    }
+
+    //- Netgen's task and how far it is, e.g. "Surface meshing, 99%,
+    //  5230 surface triangles".
+    std::string state() const
+    {
+        // Read once: Netgen changes them as it goes
+        const char* task = netgen::multithread.task;
+        const double percent = netgen::multithread.percent;
+        std::ostringstream os;
+        const char* step = step_;
+        if (step)
+        {
+            os << step << " (Netgen: " << (task && *task ? task : "working");
+        }
+        else
+        {
+            os << (task && *task ? task : "working");
+        }
+        if (percent > 0 && percent <= 100)
+        {
+            os << ", " << int(percent) << "%";
+        }
+        if (step)
+        {
+            os << ')';
+        }
+        if (mesh_)
+        {
+            os << ", " << mesh_->GetNSE() << " surface triangles";
+            if (mesh_->GetNE())
+            {
+                os << ", " << mesh_->GetNE() << " tets";
+            }
+        }
+        return os.str();
+    }
 
     void run(std::chrono::seconds every)
     {
         std::unique_lock<std::mutex> lock(mutex_);
-        while (!wake_.wait_for(lock, every, [this] { return done_; }))
-        {
-            // Read once: Netgen changes them as it goes
-            const char* task = netgen::multithread.task;
-            const double percent = netgen::multithread.percent;
-            const auto seconds = std::chrono::duration_cast<std::chrono::seconds>
+        auto nextReport = start_ + every;
+        const auto deadline =
+            timeLimit_ > 0
+          ? start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>
             (
-                std::chrono::steady_clock::now() - start_
-            ).count();
-            out_
-                << "    Netgen, " << seconds << " s: "
-                << (task && *task ? task : "working");
-            if (percent > 0 && percent <= 100)
+                std::chrono::duration<double>(timeLimit_)
+            )
+          : std::chrono::steady_clock::time_point::max();
+        while (!done_)
+        {
+            const auto until = std::min(nextReport, deadline);
+            if (wake_.wait_until(lock, until, [this] { return done_; }))
             {
-                out_ << ", " << int(percent) << "%";
+                break;
             }
-            out_ << std::endl;
+            const auto now = std::chrono::steady_clock::now();
+            if (now >= deadline && !timedOut_)
+            {
+                taskAtTimeout_ = state();
+                timedOut_ = true;
+                netgen::multithread.terminate = 1;
+            }
+            if (now >= nextReport)
+            {
+                out_
+                    << "    Netgen, " << int(seconds()) << " s: " << state()
+                    << std::endl;
+                nextReport += every;
+            }
         }
     }
 
 public:
 
-    progressReport(std::streambuf* console, std::chrono::seconds every)
+    progressReport
+    (
+        std::streambuf* console,
+        std::chrono::seconds every,
+        const netgen::Mesh* mesh = nullptr,
+        double timeLimit = 0
+    )
     :
         out_(console),
         start_(std::chrono::steady_clock::now()),
+        mesh_(mesh),
+        timeLimit_(timeLimit),
         thread_([this, every] { run(every); })
     {}
 
@@ -517,7 +594,36 @@ public:
         wake_.notify_one();
         thread_.join();
     }
+
+    //- The step of pmshFoam's Netgen calls, for the progress lines.
+    void step(const char* name)
+    {
+        step_ = name;
+    }
+
+    //- Whether the time limit passed (Netgen was told to stop), and what
+    //  Netgen was doing then.
+    bool timedOut()
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return timedOut_;
+    }
+
+    std::string taskAtTimeout()
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return taskAtTimeout_;
+    }
 };
+
+//- A time in seconds for messages: "120 s", "0.5 s".
+std::string secondsString(double seconds)
+{
+    std::ostringstream os;
+    os << seconds << " s";
+    return os.str();
+}
+
 
 //- How often a coarse mesh in the making is reported.
 constexpr std::chrono::seconds coarseProgressInterval{15};
@@ -1212,20 +1318,33 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
     mp.grading = parameters.grading;
     mp.optsteps_3d = parameters.optimisationSteps;
 
-    // Curvature-based sizes: along every STL edge whose two triangles are
-    // not separated by a feature edge, h <= (radius of the cylinder
-    // through both)/resthsurfcurvfac (Netgen's default: off)
-    if (parameters.curvatureRefinement > 0)
-    {
-        netgen::stlparam.resthsurfcurvenable = 1;
-        netgen::stlparam.resthsurfcurvfac = parameters.curvatureRefinement;
-    }
-
     const char* step = "finding edges";
+    progressReport progress
+    (
+        session.console(), coarseProgressInterval,
+        reinterpret_cast<const netgen::Mesh*>(mesh), parameters.timeLimit
+    );
+    // Netgen stopped by the time limit returns as if it had finished
+    auto checkTime = [&]()
+    {
+        if (progress.timedOut())
+        {
+            throw stlMeshingTimeout
+            (
+                msg()
+                    << "Netgen did not finish " << step << " of " << what
+                    << " within " << parameters.timeLimit << " s",
+                function,
+                "stopped at the time limit of " + secondsString(parameters.timeLimit)
+              + " while " + progress.taskAtTimeout()
+            );
+        }
+    };
     try
     {
-        const progressReport progress(session.console(), coarseProgressInterval);
+        progress.step(step);
         nglib::Ng_STL_MakeEdges(geo, mesh, &mp);
+        checkTime();
 
         // Ng_STL_MakeEdges creates the local size tree (with grading 0.3,
         // whatever mp.grading says) and builds the charts; lines and
@@ -1234,7 +1353,9 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
         restrictLocalSizes(*reinterpret_cast<netgen::Mesh*>(mesh), parameters);
 
         step = "meshing the surface";
+        progress.step(step);
         nglib::Ng_STL_GenerateSurfaceMesh(geo, mesh, &mp);
+        checkTime();
 
         // Always NG_OK: count the triangles instead
         if (nglib::Ng_GetNSE(mesh) == 0)
@@ -1253,7 +1374,9 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
         if (!parameters.surfaceOnly)
         {
             step = "meshing the volume";
+            progress.step(step);
             nglib::Ng_GenerateVolumeMesh(mesh, &mp);
+            checkTime();
         }
     }
     catch (const FatalError&)
@@ -1262,6 +1385,8 @@ pmsh::ng::volumeMesh pmsh::ng::stlVolumeMesh
     }
     catch (const std::exception& e)
     {
+        // What Netgen throws once told to stop is not the reason
+        checkTime();
         // E.g. "Stop meshing since boundary mesh is overlapping": the
         // surface mesh's chords of a thin curved wall cross the other side
         // (stlGeometry retries with smaller sizes)

@@ -23,9 +23,11 @@ std::vector<double> pmsh::fineCellWeights
     const CoarseMesh& coarse,
     double maxCellSize,
     int refinementLevels,
-    const std::vector<sizeRegion>& regions
+    const std::vector<sizeRegion>& regions,
+    fineCellWeightTerms* terms
 )
 {
+    fineCellWeightTerms sums;
     const label nPoints = coarse.nPoints();
     const label nCells = coarse.nCells();
     const double H = maxCellSize;
@@ -83,12 +85,24 @@ std::vector<double> pmsh::fineCellWeights
         // Inside a refinement region the volume mesher is held to the
         // region's size, as to H in a uniform mesh: 1/h^3 there
         const point3 centroid = 0.25*(x[t[0]] + x[t[1]] + x[t[2]] + x[t[3]]);
+        double regionSize = H;
         for (const sizeRegion& r : regions)
         {
             if (r.size < H && r.contains(centroid))
             {
                 weights[c] = std::max(weights[c], 2*volume/(h*h*h));
+                regionSize = std::min(regionSize, r.size);
             }
+        }
+        if (regionSize < H)
+        {
+            sums.regions += weights[c];
+            sums.regionsGraded += volume/(regionSize*h*h);
+        }
+        else
+        {
+            sums.volume += weights[c];
+            sums.volumeGraded += volume/(H*h*h);
         }
     }
 
@@ -114,7 +128,13 @@ std::vector<double> pmsh::fineCellWeights
                + distance(x[f[2]], x[f[0]]))/3
             );
             weights[c] += beta*area/(h*h);
+            sums.boundary += beta*area/(h*h);
         }
+    }
+
+    if (terms)
+    {
+        *terms = sums;
     }
 
     // Never zero: every cell gives some fine cells (and metis divides by

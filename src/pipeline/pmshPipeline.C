@@ -113,10 +113,15 @@ void pmsh::logCoarseMesh(const CoarseMesh& coarse)
         << "    coarse cells: " << coarse.nCells()
         << ", points: " << coarse.nPoints()
         << ", boundary faces: " << coarse.boundary.size() << '\n'
-        << "    patches:";
-    for (const meshPatch& p : coarse.patches)
+        << "    patches (coarse boundary faces):";
+    std::vector<label> faces(coarse.patches.size(), 0);
+    for (const coarseBoundaryFace& f : coarse.boundary)
     {
-        Info() << ' ' << p.name;
+        ++faces[f.patch];
+    }
+    for (std::size_t p = 0; p < coarse.patches.size(); ++p)
+    {
+        Info() << ' ' << coarse.patches[p].name << " (" << faces[p] << ')';
     }
     Info() << '\n';
     if (coarse.zones.empty())
@@ -330,6 +335,8 @@ pmsh::coarseMeshParameters pmsh::coarseParameters
     p.failedSurfaceFile = caseDir + "/postProcessing/pmshFoam/failedCoarseSurface.stl";
     p.regions = settings.refinementRegions;
     p.curvatureRefinement = settings.curvatureRefinement;
+    p.minCellSize = settings.minCellSize;
+    p.coarseTimeLimit = settings.coarseTimeLimit;
     if (settings.hasPatchSizes())
     {
         p.patchMaxCellSize = [settings](const std::string& patch)
@@ -629,6 +636,9 @@ void pmsh::reportSummary
         << "  \"bytesSentPerRank\": " << jsonArray(bytesSentPerRank) << ",\n"
         << "  \"estimatedFineCells\": " << estimate.fineCells << ",\n"
         << "  \"estimatedFineCellsLargestRank\": " << estimate.fineCellsPerRank << ",\n"
+        << "  \"estimateShares\": {\"volume\": " << estimate.volumeShare
+        << ", \"regions\": " << estimate.regionShare << ", \"boundary\": "
+        << estimate.boundaryShare << "},\n"
         << "  \"estimatedPeakMemoryPerRankBytes\": " << estimate.bytesPerRank << ",\n"
         << "  \"quality\": {\n";
     // One entry per measure: overall, then per rank

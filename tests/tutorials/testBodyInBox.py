@@ -66,9 +66,11 @@ class bodyInBox(CaseTest):
                     "    %s { %s }\n" % (patch, bc) for patch, bc in bcs.items())))
         return c
 
-    def mesh(self, geometry, np, **entries):
+    def mesh(self, geometry, np, estimate_within_band=True, **entries):
         """Mesh, checkMesh must say Mesh OK, the patches are the solids /
-        bcnames with their types; returns (case, summary.json)."""
+        bcnames with their types, the estimate after stage 1 within
+        0.67-1.5 of the fine cells unless told otherwise; returns (case,
+        summary.json)."""
         c = self.body_case(geometry, **entries)
         _, log = c.run("pmshFoam", np=np)
         self.assertIn("End", log)
@@ -84,6 +86,15 @@ class bodyInBox(CaseTest):
             self.assertRegex(text, r"(?s)\b%s\s*\{\s*type\s+%s;" % (name, kind))
         with open(os.path.join(c.dir, "postProcessing", "pmshFoam", "summary.json")) as f:
             summary = json.load(f)
+        # The estimate after stage 1 within its band (bench/estimates),
+        # with the shares of its terms
+        ratio = summary["estimatedFineCells"] / summary["fineCells"]
+        if estimate_within_band:
+            self.assertGreaterEqual(ratio, 0.67)
+            self.assertLessEqual(ratio, 1.5)
+        shares = summary["estimateShares"]
+        self.assertAlmostEqual(shares["volume"] + shares["regions"] + shares["boundary"], 1, 6)
+        self.assertGreater(shares["boundary"], 0)
         self.assertIn("pointsOffGeometry", summary)
         self.assertIn("maxDistanceOffGeometry", summary)
         # Far below the body's radius (0.5) and the fine cells (~0.3 here)
@@ -117,7 +128,11 @@ class bodyInBox(CaseTest):
     # the fold repair. Without curvature sizing, which would otherwise
     # give the needle coarse faces small enough not to fold.
     def needle(self, np):
-        c, summary = self.mesh("needleInBox.stl", np, curvatureRefinement=0)
+        # The estimate's known miss: Netgen fills round a body thinner
+        # than the coarse cells 2.5x more densely than estimated (README,
+        # Memory)
+        c, summary = self.mesh("needleInBox.stl", np, estimate_within_band=False,
+                               curvatureRefinement=0)
         self.assertGreater(summary["pointsOffGeometry"], 0)
         # Off by less than the needle's radius (0.03)
         self.assertLess(summary["maxDistanceOffGeometry"], 0.03)
@@ -131,6 +146,39 @@ class bodyInBox(CaseTest):
 
     def test_needleNeedsTheFoldRepairNp2(self):
         self.needle(2)
+
+    def coarse(self, geometry, **entries):
+        """Stage 1 alone (r = 0) on geometry: (coarse cells, log)."""
+        c = self.body_case(geometry, **entries)
+        c.set_entry("system/pmshDict", "refinementLevels", 0)
+        _, log = c.run("pmshFoam")
+        return int(re.search(r"\n    coarse cells: (\d+),", log).group(1)), log
+
+    def test_curvatureSizingKeepsItsFloorAndSaysWhereItActs(self):
+        # The CAD cylinder (radius 0.5, 48 facets) at maxCellSize 2.5: its
+        # curvature asks for 0.17, below the default floor 2.5/8
+        off, _ = self.coarse("cylinderInBox.stl", curvatureRefinement=0)
+        floored, log = self.coarse("cylinderInBox.stl")
+        unbounded, _ = self.coarse("cylinderInBox.stl", minCellSize=0.0025)
+        m = re.search(r"\n    curvature sizing \(curvatureRefinement 3, minCellSize 0\.3125\):"
+                      r" (\d+) STL points below maxCellSize, (\d+) held at minCellSize\n"
+                      r"        body: (\d+) points, smallest size ([0-9.e-]+), about (\d+)"
+                      r" boundary faces at these sizes, (\d+) at maxCellSize\n", log)
+        self.assertIsNotNone(m, log)
+        self.assertGreater(int(m.group(2)), 0)
+        self.assertEqual(m.group(1), m.group(3))     # the box's solids: flat
+        self.assertEqual(float(m.group(4)), 0.3125)
+        self.assertGreater(int(m.group(5)), int(m.group(6)))
+        faces = re.search(r"\n    patches \(coarse boundary faces\): inlet \((\d+)\)"
+                          r" outlet \((\d+)\) sides \((\d+)\) body \((\d+)\)\n", log)
+        self.assertIsNotNone(faces, log)
+        # The default time limit, from the surface's size: the least here
+        self.assertIn("\n    time limit: 120 s an attempt, 240 s for all"
+                      " (coarseTimeLimit, from the surface's size)\n", log)
+        self.assertGreater(int(faces.group(4)), 0)
+        # Measured 3119, 3228 and 10051 coarse cells (bench/results/curvature.md)
+        self.assertLess(floored, 1.3 * off)
+        self.assertGreater(unbounded, 2 * off)
 
     def test_bodyOrientedIntoTheFluidIsAnErrorNamingItsSolid(self):
         c = self.body_case("sphereInBox.stl")

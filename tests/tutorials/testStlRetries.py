@@ -8,6 +8,13 @@ makeGeometry.py curved_wall): at maxCellSize 0.3 the chords of Netgen's
 triangles sag below the slab's inner face ("Stop meshing since boundary
 mesh is overlapping") when it is thinner than about 0.005.
 
+Each attempt has a time limit (coarseTimeLimit): past it Netgen is
+stopped, and the error asks for fewer coarse triangles or more time, never
+for the finer attempts that would take longer.
+
+Shells that touch (a desk standing on the floor of its room) stop pmshFoam
+before Netgen sees them, with a message that names the solids.
+
 Run one test:  python3 testStlRetries.py stlRetries.test_thinCurvedWallMeshesAtARetry
 """
 
@@ -22,6 +29,8 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "data", "geometry"))
 from testSerialTutorials import CaseTest  # noqa: E402
 from makeGeometry import curved_wall, volume, write_ascii  # noqa: E402
+
+GEOMETRY = os.path.join(HERE, "..", "data", "geometry")
 
 OVERLAP = "Stop meshing since boundary mesh is overlapping"
 
@@ -66,6 +75,52 @@ class stlRetries(CaseTest):
             self.assertIn("%s: meshing the volume: %s" % (attempt, OVERLAP), log)
         self.assertRegex(log, r"In system/pmshDict\s+set maxCellSize 0\.075"
                               r" \(or smaller\), or\s+curvatureRefinement 60")
+        self.assertFalse(c.exists("constant/polyMesh"))
+
+    def test_timeLimitStopsNetgenAndAsksForFewerTrianglesNotFinerOnes(self):
+        # A ball in a box at maxCellSize 0.3: about 300k coarse cells, far
+        # more than Netgen makes in half a second anywhere
+        c = self.case("sphereSTL", maxCellSize=0.3, refinementLevels=0,
+                      coarseTimeLimit=0.5)
+        with open(os.path.join(GEOMETRY, "sphereInBox.stl")) as f, \
+                open(os.path.join(c.dir, "constant/geometry/body.stl"), "w") as out:
+            out.write(f.read())
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/body.stl"')
+        code, log = c.run("pmshFoam", check=False)
+        self.assertNotEqual(code, 0)
+        self.assertLess(code, 128)
+        self.assertIn("\n    time limit: 0.5 s an attempt, 1 s for all (coarseTimeLimit)\n", log)
+        self.assertIn("FOAM FATAL ERROR", log)
+        self.assertIn('Netgen could not mesh STL file "%s" in 1 attempt of 4:'
+                      % os.path.join(c.dir, "constant/geometry/body.stl"), log)
+        self.assertRegex(log, r"1 \(as configured\): stopped at the time limit of 0\.5 s"
+                              r" while (finding edges|meshing the surface|meshing the volume)"
+                              r" \(Netgen: [^\n]*\), \d+ surface triangles")
+        self.assertIn("raise coarseTimeLimit (now 0.5 s an attempt)", log)
+        self.assertRegex(log, r"maxCellSize 0\.6 \(now 0\.3\),\s+minCellSize 0\.075"
+                              r" \(now 0\.0375\)\s+or\s+curvatureRefinement 0")
+        # Never the finer attempts that would take longer still
+        self.assertNotIn("retrying with", log)
+        self.assertNotIn("curvatureRefinement 10", log)
+        self.assertNotIn("maxCellSize 0.15", log)
+        self.assertFalse(c.exists("constant/polyMesh"))
+
+    def test_touchingShellsStopBeforeNetgenNamingTheSolids(self):
+        c = self.case("sphereSTL", maxCellSize=0.5, refinementLevels=0)
+        with open(os.path.join(GEOMETRY, "roomWithDesk.stl")) as f, \
+                open(os.path.join(c.dir, "constant/geometry/room.stl"), "w") as out:
+            out.write(f.read())
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/room.stl"')
+        code, log = c.run("pmshFoam", check=False)
+        self.assertNotEqual(code, 0)
+        self.assertIn("FOAM FATAL ERROR", log)
+        self.assertIn("room.stl\": 8 pair(s) of closed surfaces touch or overlap", log)
+        self.assertIn("solid deskLegs", log)
+        self.assertIn("solid room (the outer boundary)", log)
+        self.assertIn("join the touching solids into one closed surface", log)
+        # Stopped before stage 1's Netgen, not by it
+        self.assertNotIn("Stage 1", log)
+        self.assertNotIn("Netgen did not accept", log)
         self.assertFalse(c.exists("constant/polyMesh"))
 
 

@@ -7,6 +7,7 @@
 #include "csgGeometry.H"
 #include "stlGeometry.H"
 #include "stlReader.H"
+#include "partitionVolume.H"
 #include "testUtilities.H"
 
 #include <gtest/gtest.h>
@@ -1203,4 +1204,201 @@ TEST(stlReader, bodyInABoxIsTwoShellsEachPointingOutOfTheFluid)
         const std::string m = errorOf([&]{ checkStl(flipSolids({"inlet", "outlet", "sides"}), f); });
         EXPECT_NE(m.find("is oriented inward: the closed surface of solids inlet, outlet, sides (48 triangles"), std::string::npos) << m;
     }
+}
+
+
+// Curvature sizing asks for the radius of curvature over
+// curvatureRefinement, never less than minCellSize, and its sizes grow
+// along the surface by at most grading times the distance. The needle
+// (radius 0.03) wants 0.01 at curvatureRefinement 3.
+TEST(stlGeometry, curvatureSizesKeepTheirFloorAndGrading)
+{
+    const auto g = Geometry::New(dataDir + "needleInBox.stl");
+    const stlGeometry& sg = dynamic_cast<const stlGeometry&>(*g);
+    const stlSurface& s = sg.surface();
+    const double maxh = 2.5, grading = 0.3;
+
+    const auto unbounded = sg.curvatureSizes(3, 1e-6, maxh, grading);
+    double smallest = maxh;
+    for (const sizePoint& p : unbounded.points) smallest = std::min(smallest, p.size);
+    // Centroids near the capsule's poles lie closer to the axis: up to
+    // 1.6x smaller there
+    EXPECT_GT(smallest, 0.01/1.7);
+    EXPECT_LT(smallest, 0.01*1.1);
+
+    const double floor = 0.05;
+    const auto sizing = sg.curvatureSizes(3, floor, maxh, grading);
+    ASSERT_FALSE(sizing.points.empty());
+    std::map<std::array<double, 3>, double> size;
+    for (const sizePoint& p : sizing.points)
+    {
+        EXPECT_GE(p.size, floor*(1 - 1e-12));
+        EXPECT_LT(p.size, maxh);
+        size[{p.p[0], p.p[1], p.p[2]}] = p.size;
+    }
+    auto sizeOf = [&](label v)
+    {
+        const auto it = size.find({s.points[v][0], s.points[v][1], s.points[v][2]});
+        return it == size.end() ? maxh : it->second;
+    };
+    label nEdges = 0;
+    for (const triVerts& f : s.triangles)
+    {
+        for (int k = 0; k < 3; ++k)
+        {
+            const label a = f[k], b = f[(k + 1) % 3];
+            const double length = std::sqrt(magSqr(s.points[a] - s.points[b]));
+            EXPECT_LE(std::abs(sizeOf(a) - sizeOf(b)), grading*length*(1 + 1e-9) + 1e-12)
+                << "edge " << a << '-' << b;
+            ++nEdges;
+        }
+    }
+    EXPECT_GT(nEdges, 0);
+
+    // Only the body's solid asks for anything; nothing with sizing off
+    const auto& names = s.solidNames;
+    const auto body = std::find(names.begin(), names.end(), "body") - names.begin();
+    for (std::size_t i = 0; i < sizing.solids.size(); ++i)
+    {
+        EXPECT_EQ(sizing.solids[i].nPoints > 0, label(i) == body) << names[i];
+    }
+    EXPECT_GT(sizing.solids[body].nAtFloor, 0);
+    EXPECT_TRUE(sg.curvatureSizes(0, floor, maxh, grading).points.empty());
+}
+
+
+// Away from a small feature the sizes grow by at most grading times the
+// distance: a box whose inlet face has a shallow bump at its centre asks
+// for about 2.7 there, and its far corners get no more than that plus
+// grading times their distance, not maxCellSize.
+TEST(stlGeometry, curvatureSizesGrowAwayFromAFeatureAsGradingAllows)
+{
+    stlSurface box = readStl(dataDir + "box.stl");
+    const auto centre = std::find
+    (
+        box.points.begin(), box.points.end(), point3{0, 0.5, 0.5}
+    );
+    ASSERT_NE(centre, box.points.end());
+    (*centre)[0] = -0.01;
+    const tempDir dir("curvatureGrading");
+    writeSurfaceStl(dir/"bump.stl", "box", box.points, box.triangles);
+    const auto g = Geometry::New(dir/"bump.stl");
+    const stlGeometry& sg = dynamic_cast<const stlGeometry&>(*g);
+
+    const double maxh = 100;
+    for (const double grading : {0.1, 0.3, 1.0})
+    {
+        const auto sizing = sg.curvatureSizes(3, 0.01, maxh, grading);
+        double smallest = maxh, largest = 0;
+        point3 at{0, 0, 0};
+        for (const sizePoint& p : sizing.points)
+        {
+            if (p.size < smallest)
+            {
+                smallest = p.size;
+                at = p.p;
+            }
+        }
+        EXPECT_LT(smallest, 10) << grading;
+        // Every point of the box is sized (one connected surface), within
+        // grading times its distance along the surface of the smallest
+        EXPECT_EQ(sizing.points.size(), sg.surface().points.size()) << grading;
+        for (const sizePoint& p : sizing.points)
+        {
+            largest = std::max(largest, p.size);
+            EXPECT_LE(p.size, smallest + grading*4*std::sqrt(magSqr(p.p - at)) + 1e-12);
+        }
+        EXPECT_GT(largest, smallest) << grading;
+    }
+}
+
+
+// Touching shells are named, with a point, before Netgen sees them: a
+// desk whose legs stand on the floor of its room and touch its top, and
+// two cubes sharing a face.
+TEST(stlReader, touchingShellsAreNamedWithAPoint)
+{
+    const std::string room = dataDir + "roomWithDesk.stl";
+    const std::string m = errorOf([&] { checkStl(readStl(room), room); });
+    // Each of the four legs touches the top (at its corners) and the floor
+    EXPECT_NE(m.find("roomWithDesk.stl\": 8 pair(s) of closed surfaces touch or overlap"), std::string::npos) << m;
+    EXPECT_NE(m.find("the closed surface of solid deskTop (12 triangles between (1 1 0.6999999881) and (3 2 0.75))\n"
+                     "    and the closed surface of solid deskLegs (12 triangles between (1 1 0) and"
+                     " (1.049999952 1.049999952 0.6999999881))\n"
+                     "        share the point at (1 1 0.6999999881)"), std::string::npos) << m;
+    EXPECT_NE(m.find("the closed surface of solid room (the outer boundary) (12 triangles"), std::string::npos) << m;
+    EXPECT_NE(m.find("touch or overlap at ("), std::string::npos) << m;
+    EXPECT_NE(m.find("... and 3 more"), std::string::npos) << m;
+    EXPECT_NE(m.find("join the touching solids into one closed surface"), std::string::npos) << m;
+    EXPECT_NE(m.find("move them apart"), std::string::npos) << m;
+
+    const std::string cubes = dataDir + "twoCubesSharingAFace.stl";
+    const std::string c = errorOf([&] { checkStl(readStl(cubes), cubes); });
+    EXPECT_NE(c.find("is not manifold"), std::string::npos) << c;
+    EXPECT_NE(c.find("triangles of solids left, right"), std::string::npos) << c;
+    EXPECT_NE(c.find("share faces or edges (touching shells)"), std::string::npos) << c;
+    EXPECT_NE(c.find("join the touching solids"), std::string::npos) << c;
+}
+
+
+// Shells apart, also when one is close (a gap of 1e-4 of the size), pass;
+// two shells touching at one point do not.
+TEST(stlReader, shellsApartPassAndShellsSharingAPointDoNot)
+{
+    for (const char* name : {"sphereInBox.stl", "cylinderInBox.stl", "needleInBox.stl"})
+    {
+        const std::string f = dataDir + name;
+        EXPECT_NO_THROW(checkStl(readStl(f), f)) << name;
+    }
+
+    // A tetrahedron in a box, lifted 1e-3 off its floor, then onto a
+    // corner of a second tetrahedron
+    stlSurface s;
+    s.points = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}};
+    s.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    s.solid.assign(4, 0);
+    s.solidNames = {"outer", "body"};
+    auto addTet = [&s](const point3 o, double a)
+    {
+        const label n = label(s.points.size());
+        s.points.push_back(o);
+        s.points.push_back(o + point3{a, 0, 0});
+        s.points.push_back(o + point3{0, a, 0});
+        s.points.push_back(o + point3{0, 0, a});
+        // Inward: a body in the fluid
+        for (const triVerts& t : {triVerts{0, 1, 2}, triVerts{0, 3, 1}, triVerts{0, 2, 3}, triVerts{1, 3, 2}})
+        {
+            s.triangles.push_back({n + t[0], n + t[1], n + t[2]});
+            s.solid.push_back(1);
+        }
+    };
+    addTet({0.5, 0.5, 1e-3}, 0.5);
+    EXPECT_NO_THROW(checkStl(s, "lifted.stl"));
+
+    stlSurface onFloor = s;
+    onFloor.points[4][2] = 0;
+    onFloor.points[5][2] = 0;
+    onFloor.points[6][2] = 0;
+    onFloor.points[7][2] = 0.5;
+    const std::string m = errorOf([&] { checkStl(onFloor, "onFloor.stl"); });
+    EXPECT_NE(m.find("1 pair(s) of closed surfaces touch or overlap"), std::string::npos) << m;
+    EXPECT_NE(m.find("solid outer (the outer boundary)"), std::string::npos) << m;
+    EXPECT_NE(m.find("solid body (4 triangles"), std::string::npos) << m;
+
+    // A second body whose corner is the first body's apex: one shared
+    // point, no shared edge
+    stlSurface sharing = s;
+    addTet(s.points[7], 0.5);
+    const label apex = 7;
+    const label n = label(s.points.size()) - 4;
+    sharing.points = s.points;
+    for (label t = label(sharing.triangles.size()); t < s.nTriangles(); ++t)
+    {
+        triVerts u = s.triangles[t];
+        for (label& v : u) v = v == n ? apex : v;
+        sharing.triangles.push_back(u);
+        sharing.solid.push_back(1);
+    }
+    const std::string p = errorOf([&] { checkStl(sharing, "sharing.stl"); });
+    EXPECT_NE(p.find("share the point at (0.5 0.5 0.501)"), std::string::npos) << p;
 }

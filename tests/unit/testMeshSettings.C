@@ -315,7 +315,8 @@ TEST_F(meshSettingsTest, unknownEntryIsAnErrorWithASuggestion)
         err,
         "Valid entries are: geometry, maxCellSize, grading, refinementLevels,"
         " coarseMesher, volumeMesher, optimisationSteps, volumeMesherThreads,"
-        " curvatureRefinement, patches, refinementRegions"
+        " curvatureRefinement, minCellSize, coarseTimeLimit, patches,"
+        " refinementRegions"
     );
 
     // Nothing close: no guess, still the list
@@ -731,6 +732,33 @@ TEST_F(meshSettingsTest, curvatureRefinementIsANonNegativeNumber)
     const std::string err = errorFor(minimal() + "curvatureRefinement -1;\n");
     EXPECT_HAS(err, "Entry 'curvatureRefinement' is -1");
     EXPECT_HAS(err, "coarse cells per radian of STL surface curvature");
+}
+
+TEST_F(meshSettingsTest, minCellSizeIsAFloorBelowMaxCellSize)
+{
+    const double maxh = read(minimal()).maxCellSize;
+    EXPECT_DOUBLE_EQ(read(minimal()).minCellSize, maxh/8);
+    EXPECT_DOUBLE_EQ(read(minimal() + "minCellSize 0.01;\n").minCellSize, 0.01);
+    for (const char* bad : {"0", "-1", "1000", "small"})
+    {
+        const std::string err = errorFor(minimal() + "minCellSize " + bad + ";\n");
+        EXPECT_HAS(err, std::string("Entry 'minCellSize' is ") + bad);
+        EXPECT_HAS(err, "Valid values are numbers 0 < minCellSize <= maxCellSize");
+        EXPECT_HAS(err, "STL curvature sizing");
+    }
+}
+
+TEST_F(meshSettingsTest, coarseTimeLimitIsAPositiveNumberOfSeconds)
+{
+    // 0: from the surface's size, when the STL is read
+    EXPECT_DOUBLE_EQ(read(minimal()).coarseTimeLimit, 0);
+    EXPECT_DOUBLE_EQ(read(minimal() + "coarseTimeLimit 0.5;\n").coarseTimeLimit, 0.5);
+    for (const char* bad : {"0", "-1", "1e8", "long"})
+    {
+        const std::string err = errorFor(minimal() + "coarseTimeLimit " + bad + ";\n");
+        EXPECT_HAS(err, "Entry 'coarseTimeLimit' is ");
+        EXPECT_HAS(err, "Valid values are numbers 0 < coarseTimeLimit <= 1e7");
+    }
 }
 
 TEST_F(meshSettingsTest, regionSamplesCoverTheShapeAtItsSize)

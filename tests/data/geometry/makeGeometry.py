@@ -20,6 +20,13 @@ themselves, in a temporary directory.
                     and length 1.06 along x (16 segments round), thinner
                     than the coarse cells, so that projection folds the
                     refined surface onto itself unless repaired
+  roomWithDesk.stl  touching shells: a room [0,4]x[0,3]x[0,2.5] (solid
+                    "room") holding a desk whose four legs (solid
+                    "deskLegs", four closed boxes) stand on the floor and
+                    touch the desk top (solid "deskTop") from below:
+                    coplanar faces without shared vertices
+  twoCubesSharingAFace.stl  two unit cubes, solids "left" and "right",
+                    sharing the face x = 1 (the same two triangles in both)
 
 Coordinates are float32 values (written exactly in ascii), so the ascii and
 binary spheres hold bit-identical points."""
@@ -225,6 +232,53 @@ def body_in_box(body_v, body_f, half):
             for name in ('inlet', 'outlet', 'sides')] + [('body', allv, body)]
 
 
+def closed_box(lo, hi):
+    """The 12 outward triangles of the box [lo, hi], its own points."""
+    v = [tuple(f32(hi[k] if (i >> k) & 1 else lo[k]) for k in range(3)) for i in range(8)]
+    quads = [(0, 2, 6, 4), (1, 5, 7, 3), (0, 4, 5, 1), (2, 3, 7, 6), (0, 1, 3, 2), (4, 6, 7, 5)]
+    f = []
+    for a, b, c, d in quads:
+        f += [(a, b, c), (a, c, d)]
+    if volume(v, f) < 0:
+        f = flipped(f)
+    return v, f
+
+
+def merged(parts):
+    """One point list for several (points, triangles): (points, [triangles])."""
+    v, out = [], []
+    for pv, pf in parts:
+        offset = len(v)
+        v += pv
+        out.append([tuple(i + offset for i in t) for t in pf])
+    return v, out
+
+
+def room_with_desk():
+    room = closed_box((0, 0, 0), (4, 3, 2.5))
+    top = closed_box((1, 1, 0.7), (3, 2, 0.75))
+    legs = [closed_box((x, y, 0), (x + 0.05, y + 0.05, 0.7))
+            for x in (1, 2.95) for y in (1, 1.95)]
+    v, (room_f, top_f, *legs_f) = merged([room, top] + legs)
+    # The desk is a body in the room: its normals point into it
+    return [('room', v, room_f), ('deskTop', v, flipped(top_f)),
+            ('deskLegs', v, flipped([t for f in legs_f for t in f]))]
+
+
+def two_cubes_sharing_a_face():
+    left = closed_box((0, 0, 0), (1, 1, 1))
+    right = closed_box((1, 0, 0), (2, 1, 1))
+    v, (lf, rf) = merged([left, right])
+    # Merge the shared points as an STL reader does (exact coordinates)
+    index = {}
+    remap = [index.setdefault(p, len(index)) for p in v]
+    points = [None] * len(index)
+    for p, i in index.items():
+        points[i] = p
+    return [('left', points, [tuple(remap[i] for i in t) for t in lf]),
+            ('right', points, [tuple(remap[i] for i in t) for t in rf])]
+
+
 def curved_wall(radius, thickness, angle, length, n_arc, n_length):
     """A closed slab bent into a cylindrical arc: outer radius `radius`,
     inner radius - thickness, `angle` radians around the z axis, z in
@@ -284,3 +338,6 @@ if __name__ == '__main__':
 
     v, f = capsule(16, 0.03, -0.5, 0.5)
     write_ascii('needleInBox.stl', body_in_box(v, f, 5.0))
+
+    write_ascii('roomWithDesk.stl', room_with_desk())
+    write_ascii('twoCubesSharingAFace.stl', two_cubes_sharing_a_face())
