@@ -1048,22 +1048,7 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
     }
 
     // The solids a shell is made of, for messages
-    auto solidsOf = [&](label sh)
-    {
-        std::vector<label> solids;
-        for (label t : triangles[sh])
-        {
-            solids.push_back(s.solid[t]);
-        }
-        std::sort(solids.begin(), solids.end());
-        solids.erase(std::unique(solids.begin(), solids.end()), solids.end());
-        std::string names;
-        for (label solid : solids)
-        {
-            names += (names.empty() ? "" : ", ") + s.solidNames[solid];
-        }
-        return (solids.size() > 1 ? "solids " : "solid ") + names;
-    };
+    auto solidsOfShell = [&](label sh) { return solidsOf(s, triangles[sh]); };
     // Where a shell is: a solid may hold several
     auto extentOf = [&](label sh)
     {
@@ -1100,7 +1085,7 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
             (
                 msg()
                     << "STL file \"" << fileName << "\": the closed surface of "
-                    << solidsOf(sh) << " encloses no volume",
+                    << solidsOfShell(sh) << " encloses no volume",
                 function
             );
         }
@@ -1121,7 +1106,7 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
             )
             {
                 ++depth;
-                around = solidsOf(other);
+                around = solidsOfShell(other);
             }
         }
 
@@ -1134,11 +1119,11 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
             (
                 msg()
                     << "STL file \"" << fileName << "\" is oriented inward: the"
-                    << " closed surface of " << solidsOf(sh) << extentOf(sh)
+                    << " closed surface of " << solidsOfShell(sh) << extentOf(sh)
                     << " encloses a negative volume (" << v6/6 << ").\nIts triangle normals"
                     << " point into the solid: flip the normals (reverse the"
                     << " vertex order of every triangle of "
-                    << solidsOf(sh) << ")",
+                    << solidsOfShell(sh) << ")",
                 function
             );
         }
@@ -1148,11 +1133,11 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
             (
                 msg()
                     << "STL file \"" << fileName << "\": the closed surface of "
-                    << solidsOf(sh) << extentOf(sh) << " lies inside that of " << around
+                    << solidsOfShell(sh) << extentOf(sh) << " lies inside that of " << around
                     << " but its normals point out of it, into the fluid"
                     << " around it.\nA body in the flow is a hole in the"
                     << " domain: its normals must point out of the fluid, into"
-                    << " the body. Flip the normals of " << solidsOf(sh)
+                    << " the body. Flip the normals of " << solidsOfShell(sh)
                     << " (reverse the vertex order of each of its triangles)",
                 function
             );

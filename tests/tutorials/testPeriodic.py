@@ -13,15 +13,12 @@ Run one test:  python3 testPeriodic.py periodic.test_cyclicMatchSerialAtEachLeve
 
 import os
 import re
-import shutil
 import sys
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import SOURCE_DIR  # noqa: E402
 from testSerialTutorials import CaseTest  # noqa: E402
 
-GEOMETRY = os.path.join(SOURCE_DIR, "tests", "data", "geometry")
 MATCH = r"Coupled point location match \(average [0-9.e+-]+\) OK"
 
 
@@ -31,22 +28,7 @@ class periodic(CaseTest):
         """tutorials/sphere with a periodic geometry; 0/U and 0/p name the
         periodic cube's wall patch `cube` (the cyclic ones come from
         setConstraintTypes)."""
-        c = self.case("sphere", maxCellSize=0.3, refinementLevels=levels)
-        shutil.copy(os.path.join(GEOMETRY, geometry),
-                    os.path.join(c.dir, "constant", "geometry", geometry))
-        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/%s"' % geometry)
-        path = os.path.join(c.dir, "system", "pmshDict")
-        with open(path) as f:
-            text = re.sub(r"(?ms)^patches\s*\{.*?^\}", "", f.read())
-        with open(path, "w") as f:
-            f.write(text)
-        for field in ("U", "p"):
-            path = os.path.join(c.dir, "0", field)
-            with open(path) as f:
-                text = f.read().replace("walls", "cube")
-            with open(path, "w") as f:
-                f.write(text)
-        return c
+        return self.geometry_case(geometry, "cube", maxCellSize=0.3, refinementLevels=levels)
 
     def mesh(self, levels, np):
         """Mesh; checkMesh must say Mesh OK and match the cyclic points.

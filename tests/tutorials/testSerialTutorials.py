@@ -8,13 +8,15 @@ Run one test:  python3 testSerialTutorials.py sphere.test_meshOkAtEachLevelAscii
 import json
 import math
 import os
+import re
+import shutil
 import subprocess
 import sys
 import time
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import TutorialCase, cells_in_checkmesh_log, openfoam_environment  # noqa: E402
+from tutorialCase import SOURCE_DIR, TutorialCase, cells_in_checkmesh_log, openfoam_environment  # noqa: E402
 
 
 class CaseTest(unittest.TestCase):
@@ -35,6 +37,27 @@ class CaseTest(unittest.TestCase):
     def case(self, name, **entries):
         c = TutorialCase(name, **entries)
         self.cases.append(c)
+        return c
+
+    def geometry_case(self, geometry, wall_patch, **entries):
+        """tutorials/sphere meshing tests/data/geometry/<geometry> instead:
+        no patches entry (every patch as the geometry names it), and 0/U
+        and 0/p with the sphere's `walls` entry renamed wall_patch."""
+        c = self.case("sphere", **entries)
+        shutil.copy(os.path.join(SOURCE_DIR, "tests", "data", "geometry", geometry),
+                    os.path.join(c.dir, "constant", "geometry", geometry))
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/%s"' % geometry)
+        path = os.path.join(c.dir, "system", "pmshDict")
+        with open(path) as f:
+            text = re.sub(r"(?ms)^patches\s*\{.*?^\}", "", f.read())
+        with open(path, "w") as f:
+            f.write(text)
+        for field in ("U", "p"):
+            path = os.path.join(c.dir, "0", field)
+            with open(path) as f:
+                text = f.read().replace("    walls\n", "    %s\n" % wall_patch)
+            with open(path, "w") as f:
+                f.write(text)
         return c
 
     def mesh_levels(self, name, levels, fmt="ascii", **entries):

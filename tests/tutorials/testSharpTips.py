@@ -11,15 +11,12 @@ Run one test:  python3 testSharpTips.py sharpTips.test_coneInBoxHxtOnTwoRanks
 import json
 import os
 import re
-import shutil
 import sys
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import SOURCE_DIR  # noqa: E402
 from testSerialTutorials import CaseTest  # noqa: E402
 
-GEOMETRY = os.path.join(SOURCE_DIR, "tests", "data", "geometry")
 
 
 class sharpTips(CaseTest):
@@ -27,22 +24,7 @@ class sharpTips(CaseTest):
     def cone_case(self, **entries):
         """tutorials/sphere with the cone in a box; its 0/ files cover
         every patch."""
-        c = self.case("sphere", maxCellSize=0.25, **entries)
-        shutil.copy(os.path.join(GEOMETRY, "coneInBox.geo"),
-                    os.path.join(c.dir, "constant", "geometry", "coneInBox.geo"))
-        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/coneInBox.geo"')
-        path = os.path.join(c.dir, "system", "pmshDict")
-        with open(path) as f:
-            text = re.sub(r"(?ms)^patches\s*\{.*?^\}", "", f.read())
-        with open(path, "w") as f:
-            f.write(text)
-        for field in ("U", "p"):
-            path = os.path.join(c.dir, "0", field)
-            with open(path) as f:
-                text = f.read().replace("    walls\n", '    ".*"\n')
-            with open(path, "w") as f:
-                f.write(text)
-        return c
+        return self.geometry_case("coneInBox.geo", '".*"', maxCellSize=0.25, **entries)
 
     def test_coneInBoxHxtOnTwoRanks(self):
         c = self.cone_case(refinementLevels=1, volumeMesher="hxt")
