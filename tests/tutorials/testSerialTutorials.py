@@ -39,10 +39,11 @@ class CaseTest(unittest.TestCase):
         self.cases.append(c)
         return c
 
-    def geometry_case(self, geometry, wall_patch, **entries):
+    def geometry_case(self, geometry, wall_patch=None, **entries):
         """tutorials/sphere meshing tests/data/geometry/<geometry> instead:
         no patches entry (every patch as the geometry names it), and 0/U
-        and 0/p with the sphere's `walls` entry renamed wall_patch."""
+        and 0/p with the sphere's `walls` entry renamed wall_patch, or no
+        0/ at all without one."""
         c = self.case("sphere", **entries)
         shutil.copy(os.path.join(SOURCE_DIR, "tests", "data", "geometry", geometry),
                     os.path.join(c.dir, "constant", "geometry", geometry))
@@ -52,6 +53,9 @@ class CaseTest(unittest.TestCase):
             text = re.sub(r"(?ms)^patches\s*\{.*?^\}", "", f.read())
         with open(path, "w") as f:
             f.write(text)
+        if wall_patch is None:
+            shutil.rmtree(os.path.join(c.dir, "0"), ignore_errors=True)
+            return c
         for field in ("U", "p"):
             path = os.path.join(c.dir, "0", field)
             with open(path) as f:

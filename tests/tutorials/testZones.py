@@ -14,15 +14,12 @@ Run one test:  python3 testZones.py zones.test_twoCubesNp2
 import math
 import os
 import re
-import shutil
 import sys
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import SOURCE_DIR  # noqa: E402
 from testSerialTutorials import CaseTest  # noqa: E402
 
-GEOMETRY = os.path.join(SOURCE_DIR, "tests", "data", "geometry")
 
 BALL = 4 / 3 * math.pi * 0.5 ** 3
 COIL = math.pi * (0.6 ** 2 - 0.48 ** 2) * 0.8
@@ -61,18 +58,8 @@ def face_zones(case_dir):
 class zones(CaseTest):
 
     def zone_case(self, geometry, maxCellSize, levels=1, mesher="netgen"):
-        c = self.case("sphere", maxCellSize=maxCellSize, refinementLevels=levels,
-                      volumeMesher=mesher)
-        shutil.copy(os.path.join(GEOMETRY, geometry),
-                    os.path.join(c.dir, "constant", "geometry", geometry))
-        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/%s"' % geometry)
-        path = os.path.join(c.dir, "system", "pmshDict")
-        with open(path) as f:
-            text = re.sub(r"(?ms)^patches\s*\{.*?^\}", "", f.read())
-        with open(path, "w") as f:
-            f.write(text)
-        shutil.rmtree(os.path.join(c.dir, "0"), ignore_errors=True)
-        return c
+        return self.geometry_case(geometry, maxCellSize=maxCellSize, refinementLevels=levels,
+                                  volumeMesher=mesher)
 
     def mesh(self, geometry, np, maxCellSize, levels=1, mesher="netgen"):
         """Mesh; checkMesh (-parallel) must say Mesh OK. Returns the case,
