@@ -35,8 +35,10 @@ import sys
 import tempfile
 import time
 
-BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(BENCH_DIR)
+# The case helpers every bench script shares; pb.set_entry, pb.check_mesh
+# etc. for the scripts that import this module as pb
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from benchCase import BENCH_DIR, ROOT, check_mesh, copy_tutorial, set_entry  # noqa: E402,F401
 
 # The geometries: tutorial directory, the matching Table 2 geometry of the paper
 GEOMETRIES = [
@@ -102,20 +104,6 @@ def command_output(cmd):
         return out.stdout.strip()
     except (OSError, subprocess.SubprocessError):
         return ""
-
-
-def set_entry(path, key, value):
-    """Set 'key value;' in an OpenFOAM dictionary file (add it if missing)"""
-    with open(path) as f:
-        text = f.read()
-    pattern = re.compile(r"^(\s*)" + re.escape(key) + r"\s+[^;]*;", re.M)
-    line = "%s %s;" % (key, value)
-    if pattern.search(text):
-        text = pattern.sub(lambda m: m.group(1) + line, text, count=1)
-    else:
-        text = text.rstrip("\n") + "\n" + line + "\n"
-    with open(path, "w") as f:
-        f.write(text)
 
 
 def parse_time_v(path):
@@ -221,14 +209,8 @@ class Run:
 
 def make_case(work, name, tutorial, max_cell_size, levels, mesher):
     """A copy of a tutorial with the given mesh settings (binary output)"""
-    case = os.path.join(work, name)
-    if os.path.exists(case):
-        shutil.rmtree(case)
-    src = os.path.join(ROOT, "tutorials", tutorial)
-    os.makedirs(case)
-    for sub in ("0", "constant", "system"):
-        shutil.copytree(os.path.join(src, sub), os.path.join(case, sub),
-                        ignore=shutil.ignore_patterns("polyMesh", ".polyMesh*"))
+    case = copy_tutorial(tutorial, os.path.join(work, name), ("polyMesh", ".polyMesh*"),
+                         ("0", "constant", "system"))
     dict_path = os.path.join(case, "system", "pmshDict")
     set_entry(dict_path, "maxCellSize", "%.6g" % max_cell_size)
     set_entry(dict_path, "refinementLevels", str(levels))
@@ -566,8 +548,7 @@ def run_gmsh_peer(args, geom, levels, target, pmsh_case, h_fine, start_factor, m
     best["cellsPerSecondPerCore"] = best["cells"]/chain/2
     best["gmshCellsPerSecondPerCore"] = best["cells"]/best["gmshTime"]/2
     # Untimed: is it a valid OpenFOAM mesh?
-    check = Run(["checkMesh", "-case", case], case, "log.checkMesh")
-    best["checkMesh"] = "Mesh OK" if re.search(r"^Mesh OK", check.text(), re.M) else "FAILED"
+    best["checkMesh"] = "Mesh OK" if check_mesh(case)["meshOK"] else "FAILED"
     log("      gmsh chain: gmsh %.2f s + gmshToFoam %.2f s + decomposePar %.2f s = %.2f s "
         "for %d cells (checkMesh: %s)"
         % (best["gmshTime"], best["gmshToFoamTime"], best["decomposeParTime"], chain,
