@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""pmshFoam benchmark (issue #4): pmshFoam against its peers in one run.
+"""pmshFoam benchmark: pmshFoam against its peers in one run.
 
 Runs pmshFoam on the sphere, shaft and sphereSTL tutorials at r = 1, 2(, 3)
 with P = 1 and 2 ranks, reads each run's postProcessing/pmshFoam/summary.json,
@@ -49,7 +49,7 @@ GEOMETRIES = [
 
 # maxCellSize of the coarse mesh per geometry and mode; r levels of refinement
 # each give ~8x more cells. Chosen so that quick mode takes a minute or two
-# and full mode fits in ~30 minutes on a 2-core machine (see README.md).
+# and full mode fits in ~25 minutes on a 2-core machine (see README.md).
 MODES = {
     "quick": {
         "levels": [1, 2],
@@ -75,7 +75,7 @@ MAX_SEARCH_RUNS = 5         # size search runs per peer and case (set by the mod
 # The paper's sequential Netgen rate (section 5): 0.23 million cells/minute
 PAPER_NETGEN_SERIAL_RATE = 0.23e6/60.0
 
-# Targets of issue #4 (measured and reported, never asserted)
+# Targets (measured and reported, never asserted)
 TARGET_RATE_VS_NETGEN = 0.9
 TARGET_SPEEDUP_1_TO_2 = 1.8
 TARGET_BYTES_PER_CELL_PER_RANK = 1024.0
@@ -806,9 +806,9 @@ def write_markdown(path, res):
 
     L.append("## pmshFoam (the paper's Table 2 columns)")
     L.append("")
-    L.append("Coarse = stage 1; fine = stages 2-5 (partition, surface refinement, volume "
-             "meshing, numbering); total = coarse + fine, as in the paper (I/O excluded); "
-             "write = stage 6; wall = the whole command (start-up, reading, writing). "
+    L.append("Coarse = stage 1; fine = stages 2-6 (partition, surface refinement, volume "
+             "meshing, numbering, balance); total = coarse + fine, as in the paper (I/O excluded); "
+             "write = stage 7; wall = the whole command (start-up, reading, writing). "
              "Rank balance: the largest rank's fine cells over the mean. "
              "Memory: peak resident set per rank, the larger of pmshFoam's own figure "
              "(summary.json: each rank's VmHWM) and GNU time's maximum resident set over "
@@ -924,7 +924,7 @@ def write_markdown(path, res):
     L.append(md_table(header, rows))
     L.append("")
 
-    L.append("## Targets (issue #4; measured, never asserted)")
+    L.append("## Targets (measured, never asserted)")
     L.append("")
     t = res["targets"]
     rows = []

@@ -180,7 +180,7 @@ def main():
         " then pmshFoam's quality pass: src/volume/tetQualityPass.H)",
         "",
         "Quality as OpenFOAM's checkMesh (`-parallel` on 2 and 4 ranks) reports it;"
-        " time per cell = fine time (stages 2-5, wall, slowest rank) / fine cells.",
+        " time per cell = fine time (stages 2-6, wall, slowest rank) / fine cells.",
         "How the pass was chosen (cost and gain of each option): [quality-options.md](quality-options.md).",
         "",
         "| tutorial | r | ranks | mesher | cells | us/cell | max non-orth | avg non-orth | max skewness | checkMesh |",

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""pmshFoam at scale (issue #11): bench/run --coarse | --massive | --scaling
+"""pmshFoam at scale: bench/run --coarse | --massive | --scaling
 
   --coarse   stage 1 (coarse mesh) and stage 2 (partition) at 0.1, 0.5 and
              1 million coarse cells, coarseMesher netgen against hxt, on the
@@ -445,7 +445,7 @@ def write_massive_markdown(args, res):
         % (s["estimatedFineCells"], s["fineCells"]/s["estimatedFineCells"]),
         "| wall time, whole command (s) | %.0f |" % res["wallTime"],
         "| total of the stages (s) | %.0f |" % s["totalTime"],
-        "| fine cells/s per core (stages 2-5) | %.0f |" % s["fineCellsPerSecondPerCore"],
+        "| fine cells/s per core (stages 2-6) | %.0f |" % s["fineCellsPerSecondPerCore"],
         "| peak memory, largest rank (GiB) | %.2f (expected %.2f) |"
         % (max(s["peakMemoryPerRankBytes"])/2**30, s["estimatedPeakMemoryPerRankBytes"]/2**30),
         "| bytes per fine cell, all ranks | %.0f |" % s["bytesPerFineCell"],
