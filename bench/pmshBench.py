@@ -38,7 +38,8 @@ import time
 # The case helpers every bench script shares; pb.set_entry, pb.check_mesh
 # etc. for the scripts that import this module as pb
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchCase import BENCH_DIR, ROOT, check_mesh, copy_tutorial, set_entry  # noqa: E402,F401
+from benchCase import (BENCH_DIR, ROOT, check_mesh, copy_case, copy_tutorial,  # noqa: E402,F401
+                       set_entry)
 
 # The geometries: tutorial directory, the matching Table 2 geometry of the paper
 GEOMETRIES = [
