@@ -349,10 +349,7 @@ def run(cmd, cwd, logname, np=1, timeout=None):
 
 
 def new_case(study, path):
-    shutil.rmtree(path, ignore_errors=True)
-    os.makedirs(path)
-    for d in ("0", "constant", "system"):
-        shutil.copytree(os.path.join(study.tutorial, d), os.path.join(path, d))
+    pb.copy_case(study.tutorial, path, ignore=(), parts=("0", "constant", "system"))
 
 
 def decompose(case, np):
@@ -415,24 +412,6 @@ def snappy_layer_coverage(case, patch):
     faces, layers, thickness, percent = rows[-1]
     return {"meanLayers": float(layers), "thickness": float(thickness),
             "thicknessPercent": float(percent)}
-
-
-def check_mesh(case, np):
-    ok, _, text = run(["checkMesh"], case, "log.checkMesh", np=np)
-    out = {"meshOK": bool(re.search(r"^Mesh OK", text, re.M))}
-    for key, pattern in (("cells", r"^\s*cells:\s+(\d+)"),
-                         ("maxNonOrtho", r"non-orthogonality Max: ([0-9.eE+-]+)"),
-                         ("avgNonOrtho", r"non-orthogonality Max: [0-9.eE+-]+ average: ([0-9.eE+-]+)"),
-                         ("maxSkewness", r"Max skewness = ([0-9.eE+-]+)"),
-                         ("volume", r"Total volume = ([0-9.eE+-]+?)\.?\s")):
-        found = re.search(pattern, text, re.M)
-        if found:
-            out[key] = float(found.group(1))
-    for shape in ("tetrahedra", "prisms", "hexahedra", "polyhedra"):
-        found = re.search(r"^\s*%s:\s+(\d+)" % shape, text, re.M)
-        if found:
-            out[shape] = int(found.group(1))
-    return out
 
 
 def mesh_dirs(case):
@@ -570,7 +549,7 @@ def build_mesh(args, study, m, res):
         pb.log("    failed: %s" % record["error"])
         res["meshes"][m["name"]] = record
         return None
-    record.update(check_mesh(case, args.np))
+    record.update(pb.check_mesh(case, args.np))
     record.update(study.surface_fidelity(case))
     if m["builder"] == "snappy" and m["entries"].get("nLayers"):
         record["layers"] = snappy_layer_coverage(case, SNAPPY_WALLS[study.name])

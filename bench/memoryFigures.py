@@ -6,7 +6,7 @@ mesh a copy of the tutorial and read from its log and summary.json:
 
 - fine cells / weightedFineCells (8^r times the sum of the coarse mesh's
   fineCellWeights: summary.json's "estimatedFineCells" divided by the
-  estimate's own factor);
+  estimate's own factor, "estimatedCellsPerWeighted");
 - the largest rank's peak memory above the stage-1 base, per fine cell of
   that rank ("bytesPerFineCellAboveBase");
 - the estimate's error (measured / expected) for cells and peak memory.
@@ -20,7 +20,6 @@ bench/results/memory-figures.md. Nothing here is part of the tests.
 import argparse
 import json
 import os
-import re
 import sys
 import tempfile
 
@@ -42,16 +41,6 @@ QUICK_RUNS = [("netgen", "netgen", 2, 1), ("hxt", "netgen", 3, 2), ("hxt", "hxt"
 SIZES = {"sphere": 0.3, "shaft": 0.45, "sphereSTL": 0.3}
 
 
-def estimate_factor(volume_mesher, coarse_mesher):
-    """The estimate's cellsPerWeighted for a pair of meshers, from
-    memoryEstimate.C"""
-    path = os.path.join(pb.ROOT, "src", "pipeline", "memoryEstimate.C")
-    with open(path) as f:
-        text = f.read()
-    m = re.search(r'\{"%s",\s*"%s",\s*([0-9.eE+-]+)' % (volume_mesher, coarse_mesher), text)
-    return float(m.group(1))
-
-
 def run_one(args, geom, volume, coarse, levels, ranks):
     name = "%s-%s-%s-r%d-np%d" % (geom["name"], volume, coarse, levels, ranks)
     case = pb.make_case(args.work, name, geom["tutorial"], SIZES[geom["name"]],
@@ -64,7 +53,7 @@ def run_one(args, geom, volume, coarse, levels, ranks):
         return None
     with open(summary) as f:
         s = json.load(f)
-    weighted = s["estimatedFineCells"]/estimate_factor(volume, coarse)
+    weighted = s["estimatedFineCells"]/s["estimatedCellsPerWeighted"]
     cells = s["fineCellsPerRank"]
     row = {
         "geometry": geom["name"], "volumeMesher": volume, "coarseMesher": coarse,

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""pmshFoam benchmark (issue #4): pmshFoam against its peers in one run.
+"""pmshFoam benchmark: pmshFoam against its peers in one run.
 
 Runs pmshFoam on the sphere, shaft and sphereSTL tutorials at r = 1, 2(, 3)
 with P = 1 and 2 ranks, reads each run's postProcessing/pmshFoam/summary.json,
@@ -35,8 +35,11 @@ import sys
 import tempfile
 import time
 
-BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(BENCH_DIR)
+# The case helpers every bench script shares; pb.set_entry, pb.check_mesh
+# etc. for the scripts that import this module as pb
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from benchCase import (BENCH_DIR, ROOT, check_mesh, copy_case, copy_tutorial,  # noqa: E402,F401
+                       set_entry)
 
 # The geometries: tutorial directory, the matching Table 2 geometry of the paper
 GEOMETRIES = [
@@ -47,7 +50,7 @@ GEOMETRIES = [
 
 # maxCellSize of the coarse mesh per geometry and mode; r levels of refinement
 # each give ~8x more cells. Chosen so that quick mode takes a minute or two
-# and full mode fits in ~30 minutes on a 2-core machine (see README.md).
+# and full mode fits in ~25 minutes on a 2-core machine (see README.md).
 MODES = {
     "quick": {
         "levels": [1, 2],
@@ -73,7 +76,7 @@ MAX_SEARCH_RUNS = 5         # size search runs per peer and case (set by the mod
 # The paper's sequential Netgen rate (section 5): 0.23 million cells/minute
 PAPER_NETGEN_SERIAL_RATE = 0.23e6/60.0
 
-# Targets of issue #4 (measured and reported, never asserted)
+# Targets (measured and reported, never asserted)
 TARGET_RATE_VS_NETGEN = 0.9
 TARGET_SPEEDUP_1_TO_2 = 1.8
 TARGET_BYTES_PER_CELL_PER_RANK = 1024.0
@@ -102,20 +105,6 @@ def command_output(cmd):
         return out.stdout.strip()
     except (OSError, subprocess.SubprocessError):
         return ""
-
-
-def set_entry(path, key, value):
-    """Set 'key value;' in an OpenFOAM dictionary file (add it if missing)"""
-    with open(path) as f:
-        text = f.read()
-    pattern = re.compile(r"^(\s*)" + re.escape(key) + r"\s+[^;]*;", re.M)
-    line = "%s %s;" % (key, value)
-    if pattern.search(text):
-        text = pattern.sub(lambda m: m.group(1) + line, text, count=1)
-    else:
-        text = text.rstrip("\n") + "\n" + line + "\n"
-    with open(path, "w") as f:
-        f.write(text)
 
 
 def parse_time_v(path):
@@ -221,14 +210,8 @@ class Run:
 
 def make_case(work, name, tutorial, max_cell_size, levels, mesher):
     """A copy of a tutorial with the given mesh settings (binary output)"""
-    case = os.path.join(work, name)
-    if os.path.exists(case):
-        shutil.rmtree(case)
-    src = os.path.join(ROOT, "tutorials", tutorial)
-    os.makedirs(case)
-    for sub in ("0", "constant", "system"):
-        shutil.copytree(os.path.join(src, sub), os.path.join(case, sub),
-                        ignore=shutil.ignore_patterns("polyMesh", ".polyMesh*"))
+    case = copy_tutorial(tutorial, os.path.join(work, name), ("polyMesh", ".polyMesh*"),
+                         ("0", "constant", "system"))
     dict_path = os.path.join(case, "system", "pmshDict")
     set_entry(dict_path, "maxCellSize", "%.6g" % max_cell_size)
     set_entry(dict_path, "refinementLevels", str(levels))
@@ -566,8 +549,7 @@ def run_gmsh_peer(args, geom, levels, target, pmsh_case, h_fine, start_factor, m
     best["cellsPerSecondPerCore"] = best["cells"]/chain/2
     best["gmshCellsPerSecondPerCore"] = best["cells"]/best["gmshTime"]/2
     # Untimed: is it a valid OpenFOAM mesh?
-    check = Run(["checkMesh", "-case", case], case, "log.checkMesh")
-    best["checkMesh"] = "Mesh OK" if re.search(r"^Mesh OK", check.text(), re.M) else "FAILED"
+    best["checkMesh"] = "Mesh OK" if check_mesh(case)["meshOK"] else "FAILED"
     log("      gmsh chain: gmsh %.2f s + gmshToFoam %.2f s + decomposePar %.2f s = %.2f s "
         "for %d cells (checkMesh: %s)"
         % (best["gmshTime"], best["gmshToFoamTime"], best["decomposeParTime"], chain,
@@ -825,9 +807,9 @@ def write_markdown(path, res):
 
     L.append("## pmshFoam (the paper's Table 2 columns)")
     L.append("")
-    L.append("Coarse = stage 1; fine = stages 2-5 (partition, surface refinement, volume "
-             "meshing, numbering); total = coarse + fine, as in the paper (I/O excluded); "
-             "write = stage 6; wall = the whole command (start-up, reading, writing). "
+    L.append("Coarse = stage 1; fine = stages 2-6 (partition, surface refinement, volume "
+             "meshing, numbering, balance); total = coarse + fine, as in the paper (I/O excluded); "
+             "write = stage 7; wall = the whole command (start-up, reading, writing). "
              "Rank balance: the largest rank's fine cells over the mean. "
              "Memory: peak resident set per rank, the larger of pmshFoam's own figure "
              "(summary.json: each rank's VmHWM) and GNU time's maximum resident set over "
@@ -943,7 +925,7 @@ def write_markdown(path, res):
     L.append(md_table(header, rows))
     L.append("")
 
-    L.append("## Targets (issue #4; measured, never asserted)")
+    L.append("## Targets (measured, never asserted)")
     L.append("")
     t = res["targets"]
     rows = []

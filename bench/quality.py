@@ -14,7 +14,6 @@ import argparse
 import json
 import math
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -23,7 +22,9 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests", "tutorials"))
+sys.path.insert(0, os.path.join(ROOT, "bench"))
 from tutorialCase import PolyMeshFiles  # noqa: E402
+import benchCase as bc  # noqa: E402
 
 VARIANTS = [
     ("netgen", {"volumeMesher": "netgen", "optimisationSteps": 3}),
@@ -33,27 +34,13 @@ VARIANTS = [
 RANKS = {2: [1, 2, 4], 3: [1, 2]}
 
 
-def set_entry(path, key, value):
-    with open(path) as f:
-        text = f.read()
-    entry = "%s %s;" % (key, value)
-    pattern = re.compile(r"^%s\s+[^;]*;" % re.escape(key), re.M)
-    text = pattern.sub(entry, text, count=1) if pattern.search(text) else text + "\n" + entry + "\n"
-    with open(path, "w") as f:
-        f.write(text)
-
-
 def make_case(work, tutorial, r, variant, entries, np):
     name = "%s-r%d-%s-np%d" % (tutorial, r, variant.replace(" + ", "-"), np)
-    case = os.path.join(work, name)
-    shutil.rmtree(case, ignore_errors=True)
-    shutil.copytree(os.path.join(ROOT, "tutorials", tutorial), case,
-                    ignore=shutil.ignore_patterns("processor*", "log.*", "polyMesh",
-                                                  "postProcessing", "decomposeParDict",
-                                                  "[1-9]*", ".*"))
-    set_entry(os.path.join(case, "system", "pmshDict"), "refinementLevels", r)
+    case = bc.copy_tutorial(tutorial, os.path.join(work, name),
+                            bc.RUN_LEFTOVERS + ("[1-9]*", ".*"))
+    bc.set_entry(os.path.join(case, "system", "pmshDict"), "refinementLevels", r)
     for key, value in entries.items():
-        set_entry(os.path.join(case, "system", "pmshDict"), key, value)
+        bc.set_entry(os.path.join(case, "system", "pmshDict"), key, value)
     return case
 
 
@@ -63,23 +50,14 @@ def run(argv, case, log):
                               stdin=subprocess.DEVNULL).returncode
 
 
-def mpi(np, argv):
-    return ["mpirun", "--oversubscribe", "-np", str(np)] + argv + ["-parallel"] if np > 1 else argv
-
-
 def check_mesh(case, np):
-    run(mpi(np, ["checkMesh", "-case", case]), case, "log.checkMesh")
-    with open(os.path.join(case, "log.checkMesh")) as f:
-        text = f.read()
-    cells = re.search(r"^\s*cells:\s+(\d+)", text, re.M)
-    non_orth = re.search(r"non-orthogonality Max:\s*([\d.eE+-]+)\s+average:\s*([\d.eE+-]+)", text)
-    skew = re.search(r"Max skewness =\s*([\d.eE+-]+)", text)
+    c = bc.check_mesh(case, np)
     return {
-        "cells": int(cells.group(1)) if cells else 0,
-        "maxNonOrth": float(non_orth.group(1)) if non_orth else float("nan"),
-        "avgNonOrth": float(non_orth.group(2)) if non_orth else float("nan"),
-        "maxSkewness": float(skew.group(1)) if skew else float("nan"),
-        "meshOK": re.search(r"^Mesh OK", text, re.M) is not None,
+        "cells": c.get("cells", 0),
+        "maxNonOrth": c.get("maxNonOrtho", float("nan")),
+        "avgNonOrth": c.get("avgNonOrtho", float("nan")),
+        "maxSkewness": c.get("maxSkewness", float("nan")),
+        "meshOK": c["meshOK"],
     }
 
 
@@ -147,7 +125,7 @@ def main():
                 for variant, entries in VARIANTS:
                     case = make_case(work, tutorial, r, variant, entries, np)
                     start = time.time()
-                    code = run(mpi(np, [pmsh, "-case", case]), case, "log.pmshFoam")
+                    code = run(bc.mpi(np, [pmsh, "-case", case]), case, "log.pmshFoam")
                     row = {"tutorial": tutorial, "r": r, "variant": variant, "ranks": np,
                            "case": case, "wall": time.time() - start, "failed": code != 0}
                     if code == 0:
@@ -202,7 +180,7 @@ def main():
         " then pmshFoam's quality pass: src/volume/tetQualityPass.H)",
         "",
         "Quality as OpenFOAM's checkMesh (`-parallel` on 2 and 4 ranks) reports it;"
-        " time per cell = fine time (stages 2-5, wall, slowest rank) / fine cells.",
+        " time per cell = fine time (stages 2-6, wall, slowest rank) / fine cells.",
         "How the pass was chosen (cost and gain of each option): [quality-options.md](quality-options.md).",
         "",
         "| tutorial | r | ranks | mesher | cells | us/cell | max non-orth | avg non-orth | max skewness | checkMesh |",

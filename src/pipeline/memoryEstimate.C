@@ -176,6 +176,7 @@ pmsh::memoryEstimate pmsh::estimateMemory
     const mesherFigures& f = figuresOf(volumeMesher, coarseMesher);
     nRanks = std::max(nRanks, 1);
     memoryEstimate e;
+    e.cellsPerWeighted = f.cellsPerWeighted;
     e.fineCells = f.cellsPerWeighted*weightedFineCells;
     e.fineCellsPerRank = std::min(e.fineCells, largestRankShare*e.fineCells/nRanks);
     e.bytesPerRank = baseBytes + f.bytesPerCell*e.fineCellsPerRank;

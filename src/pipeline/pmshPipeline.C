@@ -562,7 +562,7 @@ void pmsh::reportSummary
     Info()
         << "    total time:   " << total << " s\n"
         << std::setprecision(0)
-        << "    fine cells/s per core (stages 2-5): " << perCore << '\n'
+        << "    fine cells/s per core (stages 2-6): " << perCore << '\n'
         << std::setprecision(1)
         << "    peak memory per rank (MiB) min/avg/max: "
         << memoryMiB.min << " / " << memoryMiB.avg << " / " << memoryMiB.max << '\n'
@@ -635,6 +635,7 @@ void pmsh::reportSummary
         << "  \"messagesPerRank\": " << jsonArray(messagesPerRank) << ",\n"
         << "  \"bytesSentPerRank\": " << jsonArray(bytesSentPerRank) << ",\n"
         << "  \"estimatedFineCells\": " << estimate.fineCells << ",\n"
+        << "  \"estimatedCellsPerWeighted\": " << estimate.cellsPerWeighted << ",\n"
         << "  \"estimatedFineCellsLargestRank\": " << estimate.fineCellsPerRank << ",\n"
         << "  \"estimateShares\": {\"volume\": " << estimate.volumeShare
         << ", \"regions\": " << estimate.regionShare << ", \"boundary\": "

@@ -128,6 +128,9 @@ class sphere(CaseTest):
         self.assertGreater(parts, 0.9 * s["totalTime"], "a stage left out")
         self.assertAlmostEqual(s["fineCellsPerSecondPerCore"] * s["fineTime"], cells,
                                delta=1e-6 * cells)
+        # bench/memoryFigures.py recovers weightedFineCells with the
+        # estimate's factor
+        self.assertGreater(s["estimatedCellsPerWeighted"], 0)
 
     def test_tutorialAllrunEndsWithMeshOK(self):
         c = self.case("sphere")
