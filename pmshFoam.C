@@ -40,12 +40,18 @@ Usage
       - \par -overwrite
         Replace an existing mesh (only once meshing succeeded on every rank)
 
+      - \par -noMemoryCheck
+        Go on even when the memory estimate after the coarse mesh says the
+        fine mesh cannot fit in this machine's memory
+
       - \par -decomposeParDict \<file\>
         Alternative decomposition dictionary
 
     Reads system/pmshDict (geometry, maxCellSize, grading, refinementLevels,
-    volumeMesher, optimisationSteps, volumeMesherThreads, patches) and, as
-    every OpenFOAM utility, system/controlDict (writeFormat, writePrecision,
+    coarseMesher, volumeMesher, optimisationSteps, volumeMesherThreads,
+    curvatureRefinement, minCellSize, coarseTimeLimit, patches,
+    refinementRegions: README.md says what each does) and, as every
+    OpenFOAM utility, system/controlDict (writeFormat, writePrecision,
     startTime) and the fileHandler settings.
 
 \*---------------------------------------------------------------------------*/
