@@ -146,39 +146,37 @@ FORCES_FUNCTION = """
 # The two studies: what is meshed, how the answer is read
 # ---------------------------------------------------------------------------
 
-SPHERE_PMSH_DICT = """FoamFile { version 2.0; format ascii; class dictionary; object pmshDict; }
-geometry          "constant/geometry/sphereDrag.geo";
-maxCellSize       %(far)g;
+def pmsh_dict(geometry, patches, regions=""):
+    """A study's pmshDict template: the tutorials' settings but for the
+    sizes, the mesher and the layers, filled in per mesh"""
+    return """FoamFile { version 2.0; format ascii; class dictionary; object pmshDict; }
+geometry          "constant/geometry/%s";
+maxCellSize       %%(far)g;
 grading           0.3;
 refinementLevels  2;
-volumeMesher      %(mesher)s;
+volumeMesher      %%(mesher)s;
 optimisationSteps 3;
 patches
 {
+%s}
+%s""" % (geometry, patches, regions)
+
+
+SPHERE_PMSH_DICT = pmsh_dict("sphereDrag.geo", """\
     "(inlet|outlet)" { type patch; }
     sides            { type symmetry; }
     ball             { type wall; maxCellSize %(ball)g; %(layers)s}
-}
-refinementRegions
+""", """refinementRegions
 {
     wake { type box; min (-1 -1.5 -1.5); max (6 1.5 1.5); maxCellSize %(wake)g; }
     %(regions)s
 }
-"""
+""")
 
-PIPE_PMSH_DICT = """FoamFile { version 2.0; format ascii; class dictionary; object pmshDict; }
-geometry          "constant/geometry/pipe.geo";
-maxCellSize       %(far)g;
-grading           0.3;
-refinementLevels  2;
-volumeMesher      %(mesher)s;
-optimisationSteps 3;
-patches
-{
+PIPE_PMSH_DICT = pmsh_dict("pipe.geo", """\
     "(inlet|outlet)" { type patch; }
     walls            { type wall; %(layers)s}
-}
-"""
+""")
 
 
 class Study:
