@@ -21,6 +21,7 @@ Run one test:  python3 testStlRetries.py stlRetries.test_thinCurvedWallMeshesAtA
 import math
 import os
 import re
+import shutil
 import sys
 import unittest
 
@@ -45,6 +46,15 @@ class stlRetries(CaseTest):
         write_ascii(os.path.join(c.dir, "constant/geometry/wall.stl"),
                     [("wall", v, f)])
         c.set_entry("system/pmshDict", "geometry", '"constant/geometry/wall.stl"')
+        return c
+
+    def stl_case(self, source, name, **entries):
+        """tutorials/sphereSTL meshing tests/data/geometry/<source>, copied
+        into the case as constant/geometry/<name>"""
+        c = self.case("sphereSTL", refinementLevels=0, **entries)
+        shutil.copy(os.path.join(GEOMETRY, source),
+                    os.path.join(c.dir, "constant/geometry", name))
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/%s"' % name)
         return c
 
     def test_thinCurvedWallMeshesAtARetry(self):
@@ -80,12 +90,7 @@ class stlRetries(CaseTest):
     def test_timeLimitStopsNetgenAndAsksForFewerTrianglesNotFinerOnes(self):
         # A ball in a box at maxCellSize 0.3: about 300k coarse cells, far
         # more than Netgen makes in half a second anywhere
-        c = self.case("sphereSTL", maxCellSize=0.3, refinementLevels=0,
-                      coarseTimeLimit=0.5)
-        with open(os.path.join(GEOMETRY, "sphereInBox.stl")) as f, \
-                open(os.path.join(c.dir, "constant/geometry/body.stl"), "w") as out:
-            out.write(f.read())
-        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/body.stl"')
+        c = self.stl_case("sphereInBox.stl", "body.stl", maxCellSize=0.3, coarseTimeLimit=0.5)
         code, log = c.run("pmshFoam", check=False)
         self.assertNotEqual(code, 0)
         self.assertLess(code, 128)
@@ -106,11 +111,7 @@ class stlRetries(CaseTest):
         self.assertFalse(c.exists("constant/polyMesh"))
 
     def test_touchingShellsStopBeforeNetgenNamingTheSolids(self):
-        c = self.case("sphereSTL", maxCellSize=0.5, refinementLevels=0)
-        with open(os.path.join(GEOMETRY, "roomWithDesk.stl")) as f, \
-                open(os.path.join(c.dir, "constant/geometry/room.stl"), "w") as out:
-            out.write(f.read())
-        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/room.stl"')
+        c = self.stl_case("roomWithDesk.stl", "room.stl", maxCellSize=0.5)
         code, log = c.run("pmshFoam", check=False)
         self.assertNotEqual(code, 0)
         self.assertIn("FOAM FATAL ERROR", log)
