@@ -279,44 +279,16 @@ bool validPrism(const std::array<point3, 6>& v)
 }
 
 
-wallLayers growWallLayers(const layerSurface& surface, layerExchange& exchange)
+namespace
 {
-    const layerStars stars(surface, exchange);
-    const label nPoints = surface.points.size();
-    const label nTriangles = surface.triangles.size();
 
-    wallLayers layers;
-    layers.nLayers.assign(nPoints, 0);
-    layers.specPatch.assign(nPoints, -1);
-    layers.triangleLayered.assign(nTriangles, false);
-    for (const auto& [patch, spec] : surface.specs)
-    {
-        std::vector<double>& fractions = layers.levelFractions[patch];
-        for (int k = 0; k <= spec.nLayers; ++k)
-        {
-            fractions.push_back(spec.layered() ? spec.levelOffset(k)/spec.totalThickness() : 0);
-        }
-    }
-
-    layerState state{stars, layers, std::vector<const layerSpecification*>(nPoints, nullptr)};
-    const std::vector<double> lowestPatch = stars.minimum
-    (
-        [&](label t, label) { return stars.specOf(t) ? double(surface.region[t]) : layerStars::none; }
-    );
-    for (label p = 0; p < nPoints; ++p)
-    {
-        if (lowestPatch[p] < layerStars::none)
-        {
-            layers.specPatch[p] = label(lowestPatch[p]);
-            state.pointSpec[p] = &surface.specs.at(layers.specPatch[p]);
-        }
-    }
-
-    layers.direction = layerDirections(stars);
-    layers.thickness = featureAndGapThickness(stars, layers.direction, state.pointSpec, layers.stats);
-    smoothThickness(stars, layers.thickness);
-    state.dropThinStacks();
-
+//- Halve the thickness round invalid prisms and lifted triangles (after
+//  halvingRounds: set it to 0) until nothing changes on any rank.
+void validityRounds(layerState& state)
+{
+    const layerStars& stars = state.stars;
+    wallLayers& layers = state.layers;
+    const label nPoints = layers.thickness.size();
     std::vector<bool> limited(nPoints, false), interfaceLimited(nPoints, false);
     for (label round = 1; ; ++round)
     {
@@ -367,18 +339,14 @@ wallLayers growWallLayers(const layerSurface& surface, layerExchange& exchange)
     layers.stats.nInvalidLimited = std::count(limited.begin(), limited.end(), true);
     layers.stats.nInterfaceLimited =
         std::count(interfaceLimited.begin(), interfaceLimited.end(), true);
+}
 
-    for (label p = 0; p < nPoints; ++p)
-    {
-        if (layers.nLayers[p] == 0)
-        {
-            layers.thickness[p] = 0;
-            layers.direction[p] = {0, 0, 0};
-            layers.specPatch[p] = -1;
-        }
-    }
 
-    // The prisms, and the side quads where a stack meets unlayered triangles
+//- The prisms of the layered triangles, and the side quads where their
+//  stacks meet unlayered triangles.
+void buildStacks(const layerSurface& surface, wallLayers& layers)
+{
+    const label nTriangles = surface.triangles.size();
     std::map<std::pair<label, label>, std::vector<label>> edgeTriangles;
     for (label t = 0; t < nTriangles; ++t)
     {
@@ -421,6 +389,62 @@ wallLayers growWallLayers(const layerSurface& surface, layerExchange& exchange)
             }
         }
     }
+}
+
+} // End anonymous namespace
+
+
+wallLayers growWallLayers(const layerSurface& surface, layerExchange& exchange)
+{
+    const layerStars stars(surface, exchange);
+    const label nPoints = surface.points.size();
+    const label nTriangles = surface.triangles.size();
+
+    wallLayers layers;
+    layers.nLayers.assign(nPoints, 0);
+    layers.specPatch.assign(nPoints, -1);
+    layers.triangleLayered.assign(nTriangles, false);
+    for (const auto& [patch, spec] : surface.specs)
+    {
+        std::vector<double>& fractions = layers.levelFractions[patch];
+        for (int k = 0; k <= spec.nLayers; ++k)
+        {
+            fractions.push_back(spec.layered() ? spec.levelOffset(k)/spec.totalThickness() : 0);
+        }
+    }
+
+    layerState state{stars, layers, std::vector<const layerSpecification*>(nPoints, nullptr)};
+    const std::vector<double> lowestPatch = stars.minimum
+    (
+        [&](label t, label) { return stars.specOf(t) ? double(surface.region[t]) : layerStars::none; }
+    );
+    for (label p = 0; p < nPoints; ++p)
+    {
+        if (lowestPatch[p] < layerStars::none)
+        {
+            layers.specPatch[p] = label(lowestPatch[p]);
+            state.pointSpec[p] = &surface.specs.at(layers.specPatch[p]);
+        }
+    }
+
+    layers.direction = layerDirections(stars);
+    layers.thickness = featureAndGapThickness(stars, layers.direction, state.pointSpec, layers.stats);
+    smoothThickness(stars, layers.thickness);
+    state.dropThinStacks();
+
+    validityRounds(state);
+
+    for (label p = 0; p < nPoints; ++p)
+    {
+        if (layers.nLayers[p] == 0)
+        {
+            layers.thickness[p] = 0;
+            layers.direction[p] = {0, 0, 0};
+            layers.specPatch[p] = -1;
+        }
+    }
+
+    buildStacks(surface, layers);
     return layers;
 }
 
