@@ -1,9 +1,11 @@
 /*---------------------------------------------------------------------------*\
   Tests of the prism layer kernel (src/layers/wallLayers) on analytic
   surfaces: a sphere in a box, a cube's inside and outside corners, two
-  plates closer than twice the layers, a pipe wall meeting an unlayered
-  inlet, and the pipe split in two parts (the exchange done in-process, one
-  thread per part) against the one-part run, bit for bit.
+  plates closer than twice the layers, a valley that folds the layers below
+  the feature angle, side walls whose lifted triangles would turn over, a
+  pipe wall meeting an unlayered inlet, a throat too narrow for layers, and
+  the pipe split in two parts (the exchange done in-process, one thread per
+  part) against the one-part run, bit for bit.
 \*---------------------------------------------------------------------------*/
 
 #include "wallLayers.H"
@@ -380,6 +382,62 @@ TEST(wallLayers, platesCloserThanTwiceTheLayersDoNotOverlap)
 }
 
 
+TEST(wallLayers, foldsBelowTheFeatureAngleAreThinnedUntilPrismsAreValid)
+{
+    // A valley bent by 50 degrees (below featureAngle 60), its triangles
+    // far smaller than the layers: offset surfaces from its two sides would
+    // cross
+    const int n = 20;
+    const double slope = std::tan(25*pi/180);
+    testSurface s;
+    auto at = [&](int i, int j)
+    {
+        const double x = -1 + 2.0*i/n;
+        return point3{x, double(j)/n, slope*std::abs(x)};
+    };
+    for (int i = 0; i < n; ++i)
+    {
+        for (int j = 0; j < n; ++j)
+        {
+            s.quad(at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), 0, {0, 0, -1});
+        }
+    }
+    const layerSpecification valley = spec(3, 0.15, 1.2);     // 0.546 total
+    const wallLayers layers = grow(s, {{0, valley}});
+
+    EXPECT_EQ(layers.stats.nFeatureLimited, 0);
+    EXPECT_GT(layers.stats.nInvalidLimited, 0);
+    EXPECT_EQ(countLayered(layers), label(s.triangles.size()));
+    expectValidPrisms(s, layers);
+}
+
+
+TEST(wallLayers, liftedNeighbourTrianglesStayValid)
+{
+    // Plates z = 0 and z = g layered, the sides not, in rows lower than the
+    // layers: lifting the rows' plate points would turn them over
+    const double g = 0.1;
+    testSurface s;
+    addBox(s, {0, 0, 0}, {1, 1, g}, {10, 10, 10}, true, [](int axis, int) { return axis == 2 ? 0 : 1; });
+    layerSpecification plate = spec(4, 0.015, 1.2);
+    plate.maxThicknessToGapRatio = 0.3;                     // 0.03, three rows
+    const wallLayers layers = grow(s, {{0, plate}}, true);
+
+    for (label t = 0; t < label(s.triangles.size()); ++t)
+    {
+        if (s.region[t] != 1) continue;
+        const triVerts& f = s.triangles[t];
+        const vector3 before = cross(s.points[f[1]] - s.points[f[0]], s.points[f[2]] - s.points[f[0]]);
+        const point3 a = layers.topPoint(s.points, f[0]);
+        const vector3 after = cross(layers.topPoint(s.points, f[1]) - a, layers.topPoint(s.points, f[2]) - a);
+        EXPECT_GE(dot(after, before), 0.25*magSqr(before)) << "side triangle " << t;
+    }
+    EXPECT_GT(layers.stats.nInvalidLimited, 0);
+    EXPECT_EQ(countLayered(layers), 2*2*10*10);
+    expectValidPrisms(s, layers);
+}
+
+
 TEST(wallLayers, pipeWallSlidesAlongTheUnlayeredInlet)
 {
     // The wall bulges, so that its normals at the inlet lean out of the
@@ -431,6 +489,56 @@ TEST(wallLayers, pipeWallSlidesAlongTheUnlayeredInlet)
     EXPECT_EQ(nInlet, 4*nTheta);
     EXPECT_EQ(nOutlet, 4*nTheta);
     EXPECT_EQ(countLayered(layers), 2*nTheta*nZ);
+    expectValidPrisms(s, layers);
+}
+
+
+TEST(wallLayers, stacksEndCleanlyWhereTheyWouldBeThinnerThanMinThickness)
+{
+    // A throat at z = 1 too narrow for the layers: no layers at its points,
+    // none on its triangles; the stacks round it end as at an unlayered
+    // patch, with side quads of the wall's own patch
+    const int nTheta = 24, nZ = 12, L = 3;
+    const testSurface s = pipe
+    (
+        0.5, 2, nTheta, nZ,
+        [](double, double z) { return std::abs(z - 1) < 1e-9 ? -0.7 : 0.0; }
+    );
+    layerSpecification wall = spec(L, 0.01, 1.2);       // 0.0364 total
+    wall.minThickness = 0.02;
+    wall.maxThicknessToGapRatio = 0.05;                 // 0.015 at the throat
+    const wallLayers layers = grow(s, {{0, wall}}, true);
+
+    auto atThroat = [&](label p) { return std::abs(s.points[p][2] - 1) < 1e-9; };
+    for (label p = 0; p < label(s.points.size()); ++p)
+    {
+        if (atThroat(p)) EXPECT_EQ(layers.nLayers[p], 0) << "throat point " << p;
+    }
+    label nLiftedWall = 0;
+    for (label t = 0; t < label(s.triangles.size()); ++t)
+    {
+        if (s.region[t] != 0) continue;
+        const triVerts& f = s.triangles[t];
+        const bool throat = atThroat(f[0]) || atThroat(f[1]) || atThroat(f[2]);
+        EXPECT_EQ(layers.triangleLayered[t], !throat) << "wall triangle " << t;
+        if (!throat) continue;
+
+        // The unlayered wall triangles, their layered points lifted: still
+        // facing the same way, with at least a quarter of their area
+        const vector3 before = cross(s.points[f[1]] - s.points[f[0]], s.points[f[2]] - s.points[f[0]]);
+        const point3 a = layers.topPoint(s.points, f[0]);
+        const vector3 after = cross(layers.topPoint(s.points, f[1]) - a, layers.topPoint(s.points, f[2]) - a);
+        EXPECT_GE(dot(after, before), 0.25*magSqr(before)) << "wall triangle " << t;
+        nLiftedWall += layers.nLayers[f[0]] + layers.nLayers[f[1]] + layers.nLayers[f[2]] > 0;
+    }
+    EXPECT_EQ(nLiftedWall, 4*nTheta);       // both triangles of each quad of the two bands
+
+    // Side quads on the wall's patch: one per layer on each edge of the
+    // two rings next to the throat
+    label nWallQuads = 0;
+    for (const layerSideFace& f : layers.sideFaces) nWallQuads += f.region == 0;
+    EXPECT_EQ(nWallQuads, 2*nTheta*L);
+    EXPECT_EQ(layers.stats.nInterfaceLimited, 0);
     expectValidPrisms(s, layers);
 }
 
