@@ -512,7 +512,10 @@ TEST(wallLayers, stacksEndCleanlyWhereTheyWouldBeThinnerThanMinThickness)
     auto atThroat = [&](label p) { return std::abs(s.points[p][2] - 1) < 1e-9; };
     for (label p = 0; p < label(s.points.size()); ++p)
     {
-        if (atThroat(p)) EXPECT_EQ(layers.nLayers[p], 0) << "throat point " << p;
+        if (atThroat(p))
+        {
+            EXPECT_EQ(layers.nLayers[p], 0) << "throat point " << p;
+        }
     }
     label nLiftedWall = 0;
     for (label t = 0; t < label(s.triangles.size()); ++t)
@@ -722,6 +725,59 @@ struct layerBits
 };
 
 
+//- The pipe `whole` split at z = H/2, each part closed by a disc of
+//  nRings rings (partition interface), and the layers grown on both parts
+//  at once, one thread each.
+void growInTwoParts
+(
+    testSurface whole,
+    double H,
+    int nTheta,
+    int nRings,
+    const std::map<label, layerSpecification>& specs,
+    const std::function<double(const point3&, const vector3&, double)>& gap,
+    testSurface parts[2],
+    wallLayers split[2]
+)
+{
+    const double R = std::hypot(whole.points[0][0], whole.points[0][1]);
+    std::vector<label> lower, upper;
+    for (label t = 0; t < label(whole.triangles.size()); ++t)
+    {
+        double z = 0;
+        for (const label p : whole.triangles[t]) z += whole.points[p][2];
+        (z < 1.5*H ? lower : upper).push_back(t);
+    }
+    const label nWhole = whole.triangles.size();
+    addDisc(whole, R, H/2, nTheta, nRings, interfaceRegion(1), {0, 0, 1});
+    const label nDisc = label(whole.triangles.size()) - nWhole;
+    for (label t = nWhole; t < nWhole + nDisc; ++t) lower.push_back(t);
+    addDisc(whole, R, H/2, nTheta, nRings, interfaceRegion(0), {0, 0, -1});
+    for (label t = nWhole + nDisc; t < label(whole.triangles.size()); ++t) upper.push_back(t);
+    parts[0] = partOf(whole, lower);
+    parts[1] = partOf(whole, upper);
+
+    threadExchange board(2);
+    std::vector<std::thread> threads;
+    for (int r = 0; r < 2; ++r)
+    {
+        threads.emplace_back
+        (
+            [&, r]
+            {
+                threadExchange::part exchange(board, r);
+                split[r] = growWallLayers
+                (
+                    {parts[r].points, parts[r].ids, parts[r].triangles, parts[r].region, specs, gap},
+                    exchange
+                );
+            }
+        );
+    }
+    for (std::thread& t : threads) t.join();
+}
+
+
 bool sameBits(const std::vector<double>& a, const std::vector<double>& b)
 {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size()*sizeof(double)) == 0;
@@ -738,7 +794,7 @@ TEST(wallLayers, twoPartsGiveTheOnePartLayersBitForBit)
     // interface's points down from the upper part only
     const int nTheta = 24, nZ = 12, nRings = 2;
     const double R = 0.5, H = 2;
-    testSurface whole = pipe
+    const testSurface whole = pipe
     (
         R, H, nTheta, nZ,
         // None at the ends and at z = H/2, where the discs meet the wall
@@ -761,41 +817,9 @@ TEST(wallLayers, twoPartsGiveTheOnePartLayersBitForBit)
     ASSERT_GT(one.stats.nGapLimited, 0);
     const layerBits oneBits(whole, one);
 
-    // The parts: z below and above H/2, each closed by the disc between them
-    std::vector<label> lower, upper;
-    for (label t = 0; t < label(whole.triangles.size()); ++t)
-    {
-        double z = 0;
-        for (const label p : whole.triangles[t]) z += whole.points[p][2];
-        (z < 1.5*H ? lower : upper).push_back(t);
-    }
-    const label nWhole = whole.triangles.size();
-    addDisc(whole, R, H/2, nTheta, nRings, interfaceRegion(1), {0, 0, 1});
-    const label nDisc = label(whole.triangles.size()) - nWhole;
-    for (label t = nWhole; t < nWhole + nDisc; ++t) lower.push_back(t);
-    addDisc(whole, R, H/2, nTheta, nRings, interfaceRegion(0), {0, 0, -1});
-    for (label t = nWhole + nDisc; t < label(whole.triangles.size()); ++t) upper.push_back(t);
-    const testSurface parts[2] = {partOf(whole, lower), partOf(whole, upper)};
-
-    threadExchange board(2);
+    testSurface parts[2];
     wallLayers split[2];
-    std::vector<std::thread> threads;
-    for (int r = 0; r < 2; ++r)
-    {
-        threads.emplace_back
-        (
-            [&, r]
-            {
-                threadExchange::part exchange(board, r);
-                split[r] = growWallLayers
-                (
-                    {parts[r].points, parts[r].ids, parts[r].triangles, parts[r].region, specs, gap},
-                    exchange
-                );
-            }
-        );
-    }
-    for (std::thread& t : threads) t.join();
+    growInTwoParts(whole, H, nTheta, nRings, specs, gap, parts, split);
 
     std::set<std::vector<std::pair<barycentricId, int>>> prisms;
     label nShared = 0;
@@ -824,4 +848,49 @@ TEST(wallLayers, twoPartsGiveTheOnePartLayersBitForBit)
     }
     EXPECT_EQ(nShared, 2*nTheta);
     EXPECT_EQ(prisms, oneBits.prisms);
+}
+
+
+TEST(wallLayers, liftedInterfaceTrianglesStayValidAndBothSidesAgree)
+{
+    // The interface's rings closer than the layers are thick: its lifted
+    // triangles would turn over, so both parts thin the layers there alike
+    const int nTheta = 24, nZ = 12, nRings = 4, L = 4;
+    const double H = 2;
+    const testSurface whole = pipe(0.5, H, nTheta, nZ);
+    const std::map<label, layerSpecification> specs{{0, spec(L, 0.02, 1.3)}};   // 0.124 > 3/4 of a ring
+    testSurface parts[2];
+    wallLayers split[2];
+    growInTwoParts(whole, H, nTheta, nRings, specs, nullptr, parts, split);
+
+    std::map<barycentricId, std::vector<double>> shared[2];
+    for (int r = 0; r < 2; ++r)
+    {
+        EXPECT_GT(split[r].stats.nInterfaceLimited, 0) << "part " << r;
+        const testSurface& s = parts[r];
+        for (label t = 0; t < label(s.triangles.size()); ++t)
+        {
+            if (s.region[t] >= 0) continue;
+            const triVerts& f = s.triangles[t];
+            const vector3 before = cross(s.points[f[1]] - s.points[f[0]], s.points[f[2]] - s.points[f[0]]);
+            const point3 a = split[r].topPoint(s.points, f[0]);
+            const vector3 after = cross(split[r].topPoint(s.points, f[1]) - a, split[r].topPoint(s.points, f[2]) - a);
+            EXPECT_GE(dot(after, before), 0.25*magSqr(before)) << "interface triangle " << t << " of part " << r;
+        }
+        const layerBits bits(s, split[r]);
+        for (label p = 0; p < label(s.points.size()); ++p)
+        {
+            if (s.points[p][2] == H/2 && split[r].nLayers[p] == L)
+            {
+                shared[r][s.ids[p]] = bits.points.at(s.ids[p]);
+            }
+        }
+        expectValidPrisms(s, split[r]);
+    }
+    ASSERT_EQ(shared[0].size(), std::size_t(nTheta));
+    ASSERT_EQ(shared[1].size(), std::size_t(nTheta));
+    for (const auto& [id, bits] : shared[0])
+    {
+        EXPECT_TRUE(sameBits(bits, shared[1].at(id))) << "point " << id;
+    }
 }
