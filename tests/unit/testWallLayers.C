@@ -236,6 +236,18 @@ void expectValidPrisms(const testSurface& s, const wallLayers& layers)
 }
 
 
+//- The share of triangle t's area that its lifted copy (each point at its
+//  top level) keeps, projected on t's plane: negative if it turned over.
+double liftedAreaShare(const testSurface& s, const wallLayers& layers, label t)
+{
+    const triVerts& f = s.triangles[t];
+    const vector3 before = cross(s.points[f[1]] - s.points[f[0]], s.points[f[2]] - s.points[f[0]]);
+    const point3 a = layers.topPoint(s.points, f[0]);
+    const vector3 after = cross(layers.topPoint(s.points, f[1]) - a, layers.topPoint(s.points, f[2]) - a);
+    return dot(after, before)/magSqr(before);
+}
+
+
 label countLayered(const wallLayers& layers)
 {
     return std::count(layers.triangleLayered.begin(), layers.triangleLayered.end(), true);
@@ -426,11 +438,7 @@ TEST(wallLayers, liftedNeighbourTrianglesStayValid)
     for (label t = 0; t < label(s.triangles.size()); ++t)
     {
         if (s.region[t] != 1) continue;
-        const triVerts& f = s.triangles[t];
-        const vector3 before = cross(s.points[f[1]] - s.points[f[0]], s.points[f[2]] - s.points[f[0]]);
-        const point3 a = layers.topPoint(s.points, f[0]);
-        const vector3 after = cross(layers.topPoint(s.points, f[1]) - a, layers.topPoint(s.points, f[2]) - a);
-        EXPECT_GE(dot(after, before), 0.25*magSqr(before)) << "side triangle " << t;
+        EXPECT_GE(liftedAreaShare(s, layers, t), 0.25) << "side triangle " << t;
     }
     EXPECT_GT(layers.stats.nInvalidLimited, 0);
     EXPECT_EQ(countLayered(layers), 2*2*10*10);
@@ -468,16 +476,11 @@ TEST(wallLayers, pipeWallSlidesAlongTheUnlayeredInlet)
     EXPECT_EQ(nRim, nTheta);
 
     // The inlet's triangles, lifted, still face out of the pipe and keep
-    // their area within a few per cent
+    // more than half their area
     for (label t = 0; t < label(s.triangles.size()); ++t)
     {
         if (s.region[t] != 1) continue;
-        const triVerts& f = s.triangles[t];
-        const point3 a = layers.topPoint(s.points, f[0]);
-        const vector3 lifted = cross(layers.topPoint(s.points, f[1]) - a, layers.topPoint(s.points, f[2]) - a);
-        const vector3 before = cross(s.points[f[1]] - s.points[f[0]], s.points[f[2]] - s.points[f[0]]);
-        EXPECT_LT(lifted[2], 0) << "inlet triangle " << t;
-        EXPECT_GT(lifted[2]/before[2], 0.5) << "inlet triangle " << t;
+        EXPECT_GT(liftedAreaShare(s, layers, t), 0.5) << "inlet triangle " << t;
     }
 
     // The stacks end on the inlet and outlet: a side quad per layer and rim edge
@@ -528,10 +531,7 @@ TEST(wallLayers, stacksEndCleanlyWhereTheyWouldBeThinnerThanMinThickness)
 
         // The unlayered wall triangles, their layered points lifted: still
         // facing the same way, with at least a quarter of their area
-        const vector3 before = cross(s.points[f[1]] - s.points[f[0]], s.points[f[2]] - s.points[f[0]]);
-        const point3 a = layers.topPoint(s.points, f[0]);
-        const vector3 after = cross(layers.topPoint(s.points, f[1]) - a, layers.topPoint(s.points, f[2]) - a);
-        EXPECT_GE(dot(after, before), 0.25*magSqr(before)) << "wall triangle " << t;
+        EXPECT_GE(liftedAreaShare(s, layers, t), 0.25) << "wall triangle " << t;
         nLiftedWall += layers.nLayers[f[0]] + layers.nLayers[f[1]] + layers.nLayers[f[2]] > 0;
     }
     EXPECT_EQ(nLiftedWall, 4*nTheta);       // both triangles of each quad of the two bands
@@ -871,11 +871,7 @@ TEST(wallLayers, liftedInterfaceTrianglesStayValidAndBothSidesAgree)
         for (label t = 0; t < label(s.triangles.size()); ++t)
         {
             if (s.region[t] >= 0) continue;
-            const triVerts& f = s.triangles[t];
-            const vector3 before = cross(s.points[f[1]] - s.points[f[0]], s.points[f[2]] - s.points[f[0]]);
-            const point3 a = split[r].topPoint(s.points, f[0]);
-            const vector3 after = cross(split[r].topPoint(s.points, f[1]) - a, split[r].topPoint(s.points, f[2]) - a);
-            EXPECT_GE(dot(after, before), 0.25*magSqr(before)) << "interface triangle " << t << " of part " << r;
+            EXPECT_GE(liftedAreaShare(s, split[r], t), 0.25) << "interface triangle " << t << " of part " << r;
         }
         const layerBits bits(s, split[r]);
         for (label p = 0; p < label(s.points.size()); ++p)
