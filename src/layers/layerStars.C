@@ -1,0 +1,159 @@
+#include "layerStars.H"
+
+#include <algorithm>
+
+namespace pmsh
+{
+
+layerStars::layerStars(const layerSurface& surface, layerExchange& exchange)
+:
+    surface_(surface),
+    exchange_(exchange),
+    pointTriangles_(surface.points.size())
+{
+    std::vector<bool> shared(surface.points.size(), false);
+    for (label t = 0; t < label(surface.triangles.size()); ++t)
+    {
+        for (const label p : surface.triangles[t])
+        {
+            pointTriangles_[p].push_back(t);
+            if (isInterface(t)) shared[p] = true;
+        }
+    }
+    for (label p = 0; p < label(shared.size()); ++p)
+    {
+        if (shared[p])
+        {
+            shared_.push_back(p);
+            sharedIds_.push_back(surface.ids[p]);
+        }
+    }
+}
+
+
+const layerSpecification* layerStars::specOf(label t) const
+{
+    const auto it = surface_.specs.find(surface_.region[t]);
+    return it != surface_.specs.end() && it->second.layered() ? &it->second : nullptr;
+}
+
+
+triVerts layerStars::canonical(label t) const
+{
+    triVerts f = surface_.triangles[t];
+    const auto& ids = surface_.ids;
+    while (ids[f[1]] < ids[f[0]] || ids[f[2]] < ids[f[0]])
+    {
+        f = {f[1], f[2], f[0]};
+    }
+    return f;
+}
+
+
+vector3 layerStars::areaVector(label t) const
+{
+    const triVerts f = canonical(t);
+    const auto& x = surface_.points;
+    return cross(x[f[1]] - x[f[0]], x[f[2]] - x[f[0]]);
+}
+
+
+triangleKey layerStars::keyOf(label t) const
+{
+    const triVerts& f = surface_.triangles[t];
+    triangleKey k{surface_.ids[f[0]], surface_.ids[f[1]], surface_.ids[f[2]]};
+    std::sort(k.begin(), k.end());
+    return k;
+}
+
+
+std::vector<std::vector<keyedContribution>> layerStars::gather
+(
+    const contribution& f
+) const
+{
+    const label nPoints = pointTriangles_.size();
+    std::vector<std::vector<keyedContribution>> all(nPoints);
+    for (label p = 0; p < nPoints; ++p)
+    {
+        for (const label t : pointTriangles_[p])
+        {
+            keyedContribution c{keyOf(t), 0, {0, 0, 0}};
+            if (f(t, p, c.tag, c.value)) all[p].push_back(c);
+        }
+    }
+
+    std::vector<std::vector<keyedContribution>> shared(shared_.size());
+    for (std::size_t i = 0; i < shared_.size(); ++i)
+    {
+        shared[i] = std::move(all[shared_[i]]);
+    }
+    exchange_.gatherContributions(sharedIds_, shared);
+    for (std::size_t i = 0; i < shared_.size(); ++i)
+    {
+        all[shared_[i]] = std::move(shared[i]);
+    }
+
+    // The canonical order: the same sequence of additions on every rank
+    for (auto& list : all)
+    {
+        std::sort
+        (
+            list.begin(), list.end(),
+            [](const keyedContribution& a, const keyedContribution& b)
+            {
+                return a.tag != b.tag ? a.tag < b.tag : a.key < b.key;
+            }
+        );
+    }
+    return all;
+}
+
+
+std::vector<std::vector<std::pair<label, vector3>>> layerStars::sums
+(
+    const contribution& f
+) const
+{
+    const std::vector<std::vector<keyedContribution>> all = gather(f);
+    std::vector<std::vector<std::pair<label, vector3>>> result(all.size());
+    for (std::size_t p = 0; p < all.size(); ++p)
+    {
+        for (const keyedContribution& c : all[p])
+        {
+            if (result[p].empty() || result[p].back().first != c.tag)
+            {
+                result[p].push_back({c.tag, {0, 0, 0}});
+            }
+            result[p].back().second = result[p].back().second + c.value;
+        }
+    }
+    return result;
+}
+
+
+std::vector<double> layerStars::minimum(const limit& f) const
+{
+    const label nPoints = pointTriangles_.size();
+    std::vector<double> least(nPoints, none);
+    for (label p = 0; p < nPoints; ++p)
+    {
+        for (const label t : pointTriangles_[p])
+        {
+            least[p] = std::min(least[p], f(t, p));
+        }
+    }
+    std::vector<double> shared(shared_.size());
+    for (std::size_t i = 0; i < shared_.size(); ++i)
+    {
+        shared[i] = least[shared_[i]];
+    }
+    exchange_.minimum(sharedIds_, shared);
+    for (std::size_t i = 0; i < shared_.size(); ++i)
+    {
+        least[shared_[i]] = shared[i];
+    }
+    return least;
+}
+
+} // End namespace pmsh

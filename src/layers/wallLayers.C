@@ -1,0 +1,482 @@
+#include "layerStars.H"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pmsh
+{
+
+namespace
+{
+
+constexpr double degToRad = 3.14159265358979323846/180;
+
+//- Neighbouring points' thicknesses differ by at most this factor.
+constexpr double maxNeighbourRatio = 1.5;
+
+//- Validity rounds that halve thicknesses; later ones set them to 0.
+constexpr label halvingRounds = 100;
+
+//- A lifted unlayered triangle keeps at least this share of its area,
+//  projected on its original plane.
+constexpr double minLiftedAreaShare = 0.25;
+
+
+//- Per layered triangle, per point: the current state of the rounds.
+struct layerState
+{
+    const layerStars& stars;
+    wallLayers& layers;
+    std::vector<const layerSpecification*> pointSpec;
+
+    const std::vector<point3>& points() const { return stars.surface().points; }
+
+    //- Is t layered with the current thicknesses: its patch is, its points
+    //  have layers from a spec equal to its own.
+    bool canLayer(label t) const
+    {
+        const layerSpecification* spec = stars.specOf(t);
+        if (!spec) return false;
+        for (const label p : stars.surface().triangles[t])
+        {
+            if (!(layers.thickness[p] > 0) || !pointSpec[p] || *pointSpec[p] != *spec)
+            {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    //- Classify triangles and points with the current thicknesses.
+    void classify()
+    {
+        const label nTriangles = stars.surface().triangles.size();
+        for (label t = 0; t < nTriangles; ++t)
+        {
+            layers.triangleLayered[t] = canLayer(t);
+        }
+        const std::vector<double> layeredHere = stars.minimum
+        (
+            [&](label t, label) { return layers.triangleLayered[t] ? -1.0 : layerStars::none; }
+        );
+        for (std::size_t p = 0; p < layeredHere.size(); ++p)
+        {
+            layers.nLayers[p] = layeredHere[p] < 0 ? pointSpec[p]->nLayers : 0;
+        }
+    }
+
+    bool prismsValid(label t) const
+    {
+        const triVerts& f = stars.surface().triangles[t];
+        const std::array<label, 3> up{f[0], f[2], f[1]};
+        for (int k = 1; k <= layers.nLayers[f[0]]; ++k)
+        {
+            std::array<point3, 6> prism;
+            for (int i = 0; i < 3; ++i)
+            {
+                prism[i] = layers.levelPoint(points(), up[i], k - 1);
+                prism[i + 3] = layers.levelPoint(points(), up[i], k);
+            }
+            if (!validPrism(prism)) return false;
+        }
+        return true;
+    }
+
+    //- Does unlayered t stay valid with its layered points lifted?
+    bool liftedValid(label t) const
+    {
+        const triVerts& f = stars.surface().triangles[t];
+        const auto& x = points();
+        const vector3 before = cross(x[f[1]] - x[f[0]], x[f[2]] - x[f[0]]);
+        const point3 a = layers.topPoint(x, f[0]);
+        const vector3 after = cross(layers.topPoint(x, f[1]) - a, layers.topPoint(x, f[2]) - a);
+        return dot(after, before) >= minLiftedAreaShare*magSqr(before);
+    }
+
+    //- Set every thickness below its spec's minThickness to 0.
+    void dropThinStacks()
+    {
+        for (std::size_t p = 0; p < pointSpec.size(); ++p)
+        {
+            if (pointSpec[p] && layers.thickness[p] < pointSpec[p]->minThickness)
+            {
+                layers.thickness[p] = 0;
+            }
+        }
+    }
+};
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * * Thickness * * * * * * * * * * * * * * * //
+
+std::vector<double> featureAndGapThickness
+(
+    const layerStars& stars,
+    const std::vector<vector3>& direction,
+    const std::vector<const layerSpecification*>& pointSpec,
+    wallLayerStats& stats
+)
+{
+    const layerSurface& surface = stars.surface();
+    const auto& x = surface.points;
+    const auto unitNormals = stars.gather
+    (
+        [&](label t, label, label& tag, vector3& value)
+        {
+            if (!stars.specOf(t)) return false;
+            tag = 0;
+            value = normalised(stars.areaVector(t));
+            return true;
+        }
+    );
+    // Over the star's other points q: the shortest edge, and the least of
+    // -cos(q - p, d) (negative where the surface bends towards the layers:
+    // a concave point)
+    auto overNeighbours = [&](const std::function<double(label, label)>& f)
+    {
+        return stars.minimum
+        (
+            [&](label t, label p)
+            {
+                double least = layerStars::none;
+                if (!stars.specOf(t)) return least;
+                for (const label q : surface.triangles[t])
+                {
+                    if (q != p) least = std::min(least, f(p, q));
+                }
+                return least;
+            }
+        );
+    };
+    const std::vector<double> shortestEdge = overNeighbours
+    (
+        [&](label p, label q) { return std::sqrt(magSqr(x[q] - x[p])); }
+    );
+    const std::vector<double> convexity = overNeighbours
+    (
+        [&](label p, label q)
+        {
+            const vector3 e = x[q] - x[p];
+            return -dot(e, direction[p])/std::sqrt(magSqr(e));
+        }
+    );
+
+    std::vector<double> thickness(x.size(), 0);
+    for (std::size_t p = 0; p < x.size(); ++p)
+    {
+        if (!(magSqr(direction[p]) > 0) || !pointSpec[p]) continue;
+        const layerSpecification& spec = *pointSpec[p];
+        double T = spec.totalThickness();
+
+        double leastCos = 1;
+        const auto& n = unitNormals[p];
+        for (std::size_t i = 0; i < n.size(); ++i)
+        {
+            for (std::size_t j = i + 1; j < n.size(); ++j)
+            {
+                leastCos = std::min(leastCos, dot(n[i].value, n[j].value));
+            }
+        }
+        const double featureCos = std::cos(spec.featureAngle*degToRad);
+        if (leastCos < featureCos)
+        {
+            const double limit = (convexity[p] < 0 ? 0.5 : 1.0)*shortestEdge[p];
+            if (limit < T)
+            {
+                T = limit;
+                ++stats.nFeatureLimited;
+            }
+        }
+
+        if (surface.gapAlong)
+        {
+            const double gap = surface.gapAlong(x[p], direction[p], 1e-6*shortestEdge[p]);
+            if (spec.maxThicknessToGapRatio*gap < T)
+            {
+                T = spec.maxThicknessToGapRatio*gap;
+                ++stats.nGapLimited;
+            }
+        }
+        thickness[p] = T;
+    }
+    return thickness;
+}
+
+
+void smoothThickness(const layerStars& stars, std::vector<double>& thickness)
+{
+    const auto& triangles = stars.surface().triangles;
+    for (;;)
+    {
+        const std::vector<double> limit = stars.minimum
+        (
+            [&](label t, label p)
+            {
+                double least = layerStars::none;
+                if (!stars.specOf(t)) return least;
+                for (const label q : triangles[t])
+                {
+                    // Points without layers do not hold their neighbours down
+                    if (q != p && thickness[q] > 0)
+                    {
+                        least = std::min(least, maxNeighbourRatio*thickness[q]);
+                    }
+                }
+                return least;
+            }
+        );
+        bool changed = false;
+        for (std::size_t p = 0; p < thickness.size(); ++p)
+        {
+            if (limit[p] < thickness[p])
+            {
+                thickness[p] = limit[p];
+                changed = true;
+            }
+        }
+        if (!stars.anyRank(changed)) break;
+    }
+}
+
+
+// * * * * * * * * * * * * * * * * wallLayers  * * * * * * * * * * * * * * //
+
+point3 wallLayers::levelPoint
+(
+    const std::vector<point3>& points,
+    label p,
+    int k
+) const
+{
+    const point3& x = points[p];
+    if (k == 0 || nLayers[p] == 0)
+    {
+        return x;
+    }
+    const double s = thickness[p]*levelFractions.at(specPatch[p])[k];
+    const vector3& d = direction[p];
+    return {x[0] + s*d[0], x[1] + s*d[1], x[2] + s*d[2]};
+}
+
+
+bool validPrism(const std::array<point3, 6>& v)
+{
+    for (int i = 0; i < 3; ++i)
+    {
+        const int j = (i + 1) % 3, k = (i + 2) % 3;
+        if
+        (
+            !(tetVolume6(v[i], v[j], v[k], v[i + 3]) > 0)
+         || !(tetVolume6(v[i + 3], v[k + 3], v[j + 3], v[i]) > 0)
+        )
+        {
+            return false;
+        }
+    }
+    return true;
+}
+
+
+namespace
+{
+
+//- Halve the thickness round invalid prisms and lifted triangles (after
+//  halvingRounds: set it to 0) until nothing changes on any rank.
+void validityRounds(layerState& state)
+{
+    const layerStars& stars = state.stars;
+    wallLayers& layers = state.layers;
+    const label nPoints = layers.thickness.size();
+    std::vector<bool> limited(nPoints, false), interfaceLimited(nPoints, false);
+    for (label round = 1; ; ++round)
+    {
+        state.classify();
+        const bool halve = round <= halvingRounds;
+        auto shrunk = [&](label p) { return halve ? 0.5*layers.thickness[p] : 0.0; };
+        auto lifted = [&](label t, label p, bool interface)
+        {
+            if (layers.triangleLayered[t] || layers.nLayers[p] == 0 || stars.isInterface(t) != interface)
+            {
+                return layerStars::none;
+            }
+            return state.liftedValid(t) ? layerStars::none : shrunk(p);
+        };
+        const std::vector<double> wallLimit = stars.minimum
+        (
+            [&](label t, label p)
+            {
+                if (layers.triangleLayered[t])
+                {
+                    return state.prismsValid(t) ? layerStars::none : shrunk(p);
+                }
+                return lifted(t, p, false);
+            }
+        );
+        const std::vector<double> interfaceLimit = stars.minimum
+        (
+            [&](label t, label p) { return lifted(t, p, true); }
+        );
+
+        bool changed = false;
+        for (label p = 0; p < nPoints; ++p)
+        {
+            const double limit = std::min(wallLimit[p], interfaceLimit[p]);
+            if (limit < layers.thickness[p])
+            {
+                layers.thickness[p] = limit;
+                changed = true;
+                limited[p] = true;
+                if (interfaceLimit[p] < wallLimit[p]) interfaceLimited[p] = true;
+            }
+        }
+        layers.stats.nRounds = round;
+        if (!stars.anyRank(changed)) break;
+        smoothThickness(stars, layers.thickness);
+        state.dropThinStacks();
+    }
+    layers.stats.nInvalidLimited = std::count(limited.begin(), limited.end(), true);
+    layers.stats.nInterfaceLimited =
+        std::count(interfaceLimited.begin(), interfaceLimited.end(), true);
+}
+
+
+//- The prisms of the layered triangles, and the side quads where their
+//  stacks meet unlayered triangles.
+void buildStacks(const layerSurface& surface, wallLayers& layers)
+{
+    const label nTriangles = surface.triangles.size();
+    std::map<std::pair<label, label>, std::vector<label>> edgeTriangles;
+    for (label t = 0; t < nTriangles; ++t)
+    {
+        const triVerts& f = surface.triangles[t];
+        for (int i = 0; i < 3; ++i)
+        {
+            const label u = f[i], v = f[(i + 1) % 3];
+            edgeTriangles[{std::min(u, v), std::max(u, v)}].push_back(t);
+        }
+    }
+    for (label t = 0; t < nTriangles; ++t)
+    {
+        if (!layers.triangleLayered[t]) continue;
+        const triVerts& f = surface.triangles[t];
+        const int L = layers.nLayers[f[0]];
+        for (int k = 1; k <= L; ++k)
+        {
+            layers.prisms.push_back
+            ({{
+                {f[0], k - 1}, {f[2], k - 1}, {f[1], k - 1},
+                {f[0], k}, {f[2], k}, {f[1], k}
+            }});
+            layers.prismTriangle.push_back(t);
+        }
+        for (int i = 0; i < 3; ++i)
+        {
+            const label u = f[i], v = f[(i + 1) % 3];
+            for (const label n : edgeTriangles.at({std::min(u, v), std::max(u, v)}))
+            {
+                if (layers.triangleLayered[n]) continue;
+                for (int k = 1; k <= L; ++k)
+                {
+                    layers.sideFaces.push_back
+                    ({
+                        {{{v, k - 1}, {u, k - 1}, {u, k}, {v, k}}},
+                        surface.region[n]
+                    });
+                }
+                break;
+            }
+        }
+    }
+}
+
+} // End anonymous namespace
+
+
+wallLayers growWallLayers(const layerSurface& surface, layerExchange& exchange)
+{
+    const layerStars stars(surface, exchange);
+    const label nPoints = surface.points.size();
+    const label nTriangles = surface.triangles.size();
+
+    wallLayers layers;
+    layers.nLayers.assign(nPoints, 0);
+    layers.specPatch.assign(nPoints, -1);
+    layers.triangleLayered.assign(nTriangles, false);
+    for (const auto& [patch, spec] : surface.specs)
+    {
+        std::vector<double>& fractions = layers.levelFractions[patch];
+        for (int k = 0; k <= spec.nLayers; ++k)
+        {
+            fractions.push_back(spec.layered() ? spec.levelOffset(k)/spec.totalThickness() : 0);
+        }
+    }
+
+    layerState state{stars, layers, std::vector<const layerSpecification*>(nPoints, nullptr)};
+    const std::vector<double> lowestPatch = stars.minimum
+    (
+        [&](label t, label) { return stars.specOf(t) ? double(surface.region[t]) : layerStars::none; }
+    );
+    for (label p = 0; p < nPoints; ++p)
+    {
+        if (lowestPatch[p] < layerStars::none)
+        {
+            layers.specPatch[p] = label(lowestPatch[p]);
+            state.pointSpec[p] = &surface.specs.at(layers.specPatch[p]);
+        }
+    }
+
+    layers.direction = layerDirections(stars);
+    layers.thickness = featureAndGapThickness(stars, layers.direction, state.pointSpec, layers.stats);
+    smoothThickness(stars, layers.thickness);
+    state.dropThinStacks();
+
+    validityRounds(state);
+
+    for (label p = 0; p < nPoints; ++p)
+    {
+        if (layers.nLayers[p] == 0)
+        {
+            layers.thickness[p] = 0;
+            layers.direction[p] = {0, 0, 0};
+            layers.specPatch[p] = -1;
+        }
+    }
+
+    buildStacks(surface, layers);
+    return layers;
+}
+
+
+std::function<double(const point3&, const vector3&, double)> gapAlongTriangles
+(
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles
+)
+{
+    return [points, triangles](const point3& origin, const vector3& d, double skip)
+    {
+        // Moller-Trumbore: the nearest hit beyond skip
+        double nearest = layerStars::none;
+        for (const triVerts& f : triangles)
+        {
+            const vector3 e1 = points[f[1]] - points[f[0]];
+            const vector3 e2 = points[f[2]] - points[f[0]];
+            const vector3 h = cross(d, e2);
+            const double a = dot(e1, h);
+            if (std::abs(a) < 1e-300) continue;
+            const vector3 s = origin - points[f[0]];
+            const double u = dot(s, h)/a;
+            if (u < 0 || u > 1) continue;
+            const vector3 q = cross(s, e1);
+            const double v = dot(d, q)/a;
+            if (v < 0 || u + v > 1) continue;
+            const double t = dot(e2, q)/a;
+            if (t > skip) nearest = std::min(nearest, t);
+        }
+        return nearest;
+    };
+}
+
+} // End namespace pmsh
