@@ -1,4 +1,5 @@
 #include "tetQualityPass.H"
+#include "checkMeshFaceMetrics.H"
 
 #include <algorithm>
 #include <cmath>
@@ -34,29 +35,9 @@ struct measure
     double skew;
 };
 
-double skewnessOf
-(
-    const vector3& sv, double base,
-    const point3& a, const point3& b, const point3& c, const point3& centre
-)
-{
-    const double m = std::sqrt(magSqr(sv));
-    if (!(m > 0))
-    {
-        return 0;
-    }
-    const vector3 hat = (1/m)*sv;
-    double fd = base;
-    for (const point3* p : {&a, &b, &c})
-    {
-        fd = std::max(fd, std::abs(dot(hat, *p - centre)));
-    }
-    return m/fd;
-}
-
-// checkMesh's measures (primitiveMeshTools::faceOrthogonality and
-// faceSkewness) of face (a, b, c) between tets with apexes d and e. The
-// centre of a tet is the mean of its points (as OpenFOAM's for a tet).
+// checkMesh's measures of face (a, b, c) between tets with apexes d and
+// e. The centre of a tet is the mean of its points (as OpenFOAM's for a
+// tet), so Cpf and d need no centres.
 measure internalMeasure
 (
     const point3& a, const point3& b, const point3& c, const point3& d, const point3& e
@@ -65,17 +46,11 @@ measure internalMeasure
     const point3 centre = (1.0/3.0)*(a + b + c);
     const vector3 area = cross(b - a, c - a);
     const vector3 D = 0.25*(e - d);          // cell centre to cell centre
-    const double DA = dot(D, area);
-    if (!(DA*DA > 0))
-    {
-        return {infinite, infinite};
-    }
     const vector3 Cpf = 0.25*(centre - d);   // cell centre to face centre
-    const vector3 sv = Cpf - (dot(area, Cpf)/DA)*D;
     return
     {
-        magSqr(cross(D, area))/(DA*DA),
-        skewnessOf(sv, 0.2*std::sqrt(magSqr(D)), a, b, c, centre)
+        nonOrthogonalityTan2(area, D),
+        internalFaceSkewness(a, b, c, centre, area, Cpf, D)
     };
 }
 
@@ -88,18 +63,11 @@ measure boundaryMeasure
 )
 {
     const point3 centre = (1.0/3.0)*(a + b + c);
-    const vector3 area = cross(b - a, c - a);
-    const double A2 = magSqr(area);
-    const vector3 Cpf = 0.25*(centre - d);
-    const double normal = dot(area, Cpf);
-    if (!(normal*normal > 0))
-    {
-        return {infinite, infinite};
-    }
-    const vector3 dn = (normal/A2)*area;
-    const vector3 sv = Cpf - dn;
-    const double dn2 = magSqr(dn);
-    return {magSqr(sv)/dn2, skewnessOf(sv, 0.4*std::sqrt(dn2), a, b, c, centre)};
+    const boundaryFaceMetrics m = boundaryFaceMetricsOf
+    (
+        a, b, c, centre, cross(b - a, c - a), 0.25*(centre - d)
+    );
+    return {m.nonOrthogonalityTan2, m.skewness};
 }
 
 double badness(const measure& m, bool nonOrthCounts)
