@@ -19,7 +19,7 @@ pmsh::qualityPass::passMesh::passMesh
     triangles_(triangles),
     triStart_(nFixed + 1, 0),
     pointTris_(3*triangles.size()),
-    kind_(triangles.size(), physicalBoundary)
+    processor_(triangles.size() + 1, 0)
 {
     for (const triVerts& f : triangles)
     {
@@ -30,7 +30,7 @@ pmsh::qualityPass::passMesh::passMesh
     for (label t = 0; t < label(triangles.size()); ++t)
     {
         for (label p : triangles[t]) pointTris_[fill[p]++] = t;
-        if (!interface.empty() && interface[t]) kind_[t] = processorBoundary;
+        if (!interface.empty() && interface[t]) processor_[t] = 1;
     }
 }
 
@@ -66,7 +66,7 @@ void pmsh::qualityPass::passMesh::rebuild()
         {
             const triVerts f = tetFace(tets_[t], k);
             const label u = findTet(t, f);
-            across_[4*t + k] = u >= 0 ? u : boundaryKind(f);
+            across_[4*t + k] = u >= 0 ? u : acrossBoundary(boundaryTriangle(f));
         }
     }
     locked_.assign(points_.size(), 0);
@@ -94,7 +94,7 @@ pmsh::faceQuality pmsh::qualityPass::passMesh::worstFaces() const
             (
                 tets_[t], k, u, [&](label q) -> const point3& { return points_[q]; }
             );
-            if (u != physicalBoundary) tan2 = std::max(tan2, m.tan2);
+            if (nonOrthogonalityCounts(u)) tan2 = std::max(tan2, m.tan2);
             skew = std::max(skew, m.skew);
         }
     }
@@ -116,7 +116,7 @@ pmsh::label pmsh::qualityPass::passMesh::findTet(label t, const triVerts& f) con
 }
 
 
-pmsh::label pmsh::qualityPass::passMesh::boundaryKind(const triVerts& f) const
+pmsh::label pmsh::qualityPass::passMesh::boundaryTriangle(const triVerts& f) const
 {
     if (f[0] < nFixed_)
     {
@@ -124,10 +124,10 @@ pmsh::label pmsh::qualityPass::passMesh::boundaryKind(const triVerts& f) const
         {
             const triVerts& g = triangles_[pointTris_[i]];
             const auto in = [&](label p) { return g[0] == p || g[1] == p || g[2] == p; };
-            if (in(f[1]) && in(f[2])) return kind_[pointTris_[i]];
+            if (in(f[1]) && in(f[2])) return pointTris_[i];
         }
     }
-    return physicalBoundary;
+    return label(triangles_.size());
 }
 
 
@@ -162,7 +162,7 @@ bool pmsh::qualityPass::passMesh::addressSet
             }
         }
     }
-    acrossOf.assign(set.size(), {-3, -3, -3, -3});
+    acrossOf.assign(set.size(), {0, 0, 0, 0});      // each set below, or false
     inSet.assign(set.size(), {-1, -1, -1, -1});
     for (std::size_t i = 0; i < set.size(); ++i)
     {
