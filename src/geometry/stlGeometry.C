@@ -853,6 +853,69 @@ std::string coarserAdvice(const coarseMeshParameters& sizes, double attemptLimit
 }
 
 
+//- The error when every attempt failed (or the time limit came first):
+//  each attempt's reason, and what to change in system/pmshDict.
+[[noreturn]] void throwLadderFailure
+(
+    const std::string& what,
+    const std::vector<ladderAttempt<stlMeshSizes>>& attempts,
+    const ladderFailures& failed,
+    const coarseMeshParameters& sizes,
+    double attemptLimit,
+    double ladderLimit
+)
+{
+    const std::vector<std::string>& reasons = failed.reasons;
+    const std::size_t nTried = failed.nTried();
+    msg message;
+    message
+        << "Netgen could not mesh " << what << " in " << nTried
+        << (nTried == 1 ? " attempt" : " attempts")
+        << (nTried < attempts.size() ? " of " + std::to_string(attempts.size()) : "")
+        << ":";
+    for (std::size_t i = 0; i < nTried; ++i)
+    {
+        message
+            << "\n    " << i + 1 << " ("
+            << (i == 0 ? "as configured" : attempts[i].change) << "): "
+            << reasons[i];
+    }
+    if (failed.stopped)
+    {
+        message
+            << "\nEvery further attempt asks for smaller triangles and would"
+            << " take longer: none was made. "
+            << coarserAdvice(sizes, attemptLimit) << '.';
+        throw FatalError(message, "pmsh::stlGeometry::netgenMesh");
+    }
+
+    const stlMeshSizes& last = attempts[nTried - 1].parameters;
+    if (nTried < attempts.size())
+    {
+        message
+            << "\nThe attempts together reached their time limit of "
+            << toString(ladderLimit) << " s (twice coarseTimeLimit) before "
+            << attempts[nTried].change << " could be tried.";
+    }
+    message
+        << "\nNetgen's triangles are too large for some part of the surface"
+        << " (often a wall thinner than the sag of its triangles on a curved"
+        << " face, or two surfaces closer than maxCellSize). In system/pmshDict"
+        << " set maxCellSize " << toString(last.maxh/2) << " (or smaller), or"
+        << " curvatureRefinement " << toString(2*last.curvatureRefinement)
+        << " with a smaller minCellSize (now " << toString(sizes.minCellSize)
+        << "), or give the thin part's patch a smaller maxCellSize in"
+        << " patches; also check the STL for self-intersections.";
+    if (nTried < attempts.size())
+    {
+        message
+            << " Each of these takes longer: raise coarseTimeLimit (now "
+            << toString(attemptLimit) << " s) with it.";
+    }
+    throw FatalError(message, "pmsh::stlGeometry::netgenMesh");
+}
+
+
 //- Netgen's coarse mesh of the STL surface, retried with smaller sizes
 //  while Netgen's meshing steps fail, each attempt and all of them within
 //  a time limit.
@@ -975,54 +1038,7 @@ ng::volumeMesh retriedStlMesh
         return std::move(*meshed);
     }
 
-    const std::vector<std::string>& reasons = failed.reasons;
-    const std::size_t nTried = failed.nTried();
-    msg message;
-    message
-        << "Netgen could not mesh " << what << " in " << nTried
-        << (nTried == 1 ? " attempt" : " attempts")
-        << (nTried < attempts.size() ? " of " + std::to_string(attempts.size()) : "")
-        << ":";
-    for (std::size_t i = 0; i < nTried; ++i)
-    {
-        message
-            << "\n    " << i + 1 << " ("
-            << (i == 0 ? "as configured" : attempts[i].change) << "): "
-            << reasons[i];
-    }
-    if (failed.stopped)
-    {
-        message
-            << "\nEvery further attempt asks for smaller triangles and would"
-            << " take longer: none was made. "
-            << coarserAdvice(sizes, attemptLimit) << '.';
-        throw FatalError(message, "pmsh::stlGeometry::netgenMesh");
-    }
-
-    const stlMeshSizes& last = attempts[nTried - 1].parameters;
-    if (nTried < attempts.size())
-    {
-        message
-            << "\nThe attempts together reached their time limit of "
-            << toString(ladderLimit) << " s (twice coarseTimeLimit) before "
-            << attempts[nTried].change << " could be tried.";
-    }
-    message
-        << "\nNetgen's triangles are too large for some part of the surface"
-        << " (often a wall thinner than the sag of its triangles on a curved"
-        << " face, or two surfaces closer than maxCellSize). In system/pmshDict"
-        << " set maxCellSize " << toString(last.maxh/2) << " (or smaller), or"
-        << " curvatureRefinement " << toString(2*last.curvatureRefinement)
-        << " with a smaller minCellSize (now " << toString(sizes.minCellSize)
-        << "), or give the thin part's patch a smaller maxCellSize in"
-        << " patches; also check the STL for self-intersections.";
-    if (nTried < attempts.size())
-    {
-        message
-            << " Each of these takes longer: raise coarseTimeLimit (now "
-            << toString(attemptLimit) << " s) with it.";
-    }
-    throw FatalError(message, "pmsh::stlGeometry::netgenMesh");
+    throwLadderFailure(what, attempts, failed, sizes, attemptLimit, ladderLimit);
 }
 
 } // End anonymous namespace

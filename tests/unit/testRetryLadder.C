@@ -27,6 +27,16 @@ std::vector<ladderAttempt<int>> numbered(int n)
     return attempts;
 }
 
+//- An attempt that fails with its change as the reason, stopping the
+//  ladder at attempt `stopAt`
+auto failingWithItsChange(std::size_t stopAt = std::size_t(-1))
+{
+    return [stopAt](const ladderAttempt<int>& a, std::size_t i) -> int
+    {
+        throw attemptFailed{a.change, i == stopAt};
+    };
+}
+
 } // End anonymous namespace
 
 
@@ -61,15 +71,7 @@ TEST(retryLadder, allFailingGivesNoResultAndEveryReason)
 {
     const auto attempts = numbered(3);
     ladderFailures failed;
-    const auto result = climbLadder
-    (
-        attempts,
-        [](const ladderAttempt<int>& a, std::size_t) -> int
-        {
-            throw attemptFailed{a.change};
-        },
-        failed
-    );
+    const auto result = climbLadder(attempts, failingWithItsChange(), failed);
     EXPECT_FALSE(result.has_value());
     EXPECT_EQ(failed.reasons, (std::vector<std::string>{"", "try 1", "try 2"}));
     EXPECT_EQ(failed.nTried(), 3u);
@@ -81,15 +83,7 @@ TEST(retryLadder, aStoppingFailureEndsTheClimb)
 {
     const auto attempts = numbered(4);
     ladderFailures failed;
-    const auto result = climbLadder
-    (
-        attempts,
-        [](const ladderAttempt<int>& a, std::size_t i) -> int
-        {
-            throw attemptFailed{a.change, i == 1};
-        },
-        failed
-    );
+    const auto result = climbLadder(attempts, failingWithItsChange(1), failed);
     EXPECT_FALSE(result.has_value());
     EXPECT_EQ(failed.nTried(), 2u);
     EXPECT_TRUE(failed.stopped);
@@ -102,13 +96,7 @@ TEST(retryLadder, aRefusedStartEndsTheClimbWithoutAReason)
     ladderFailures failed;
     const auto result = climbLadder
     (
-        attempts,
-        [](const ladderAttempt<int>& a, std::size_t) -> int
-        {
-            throw attemptFailed{a.change};
-        },
-        failed,
-        [](std::size_t i) { return i < 2; }
+        attempts, failingWithItsChange(), failed, [](std::size_t i) { return i < 2; }
     );
     EXPECT_FALSE(result.has_value());
     EXPECT_EQ(failed.reasons, (std::vector<std::string>{"", "try 1"}));
