@@ -63,7 +63,7 @@ pmsh::caseOutput::caseOutput
         std::error_code ec;
         fs::remove_all(scratchDir_, ec);
     }
-    comm.all(true);
+    comm.barrier();
 
     // The scratch case mirrors the real one: same controlDict (writeFormat,
     // writePrecision, startTime), a processor case when parallel
@@ -91,7 +91,7 @@ void pmsh::caseOutput::commit()
 {
     // The collated fileHandler may still be writing in its thread
     Foam::fileHandler().flush();
-    comm_.all(true);
+    comm_.barrier();
 
     // Move the old output aside, the new into place, then drop the old:
     // a target never exists half-written
@@ -112,7 +112,7 @@ void pmsh::caseOutput::commit()
         }
     }
     committed_ = true;
-    comm_.all(true);
+    comm_.barrier();
     if (comm_.master())
     {
         std::error_code ec;

@@ -7,6 +7,7 @@
 #include "UIPstream.H"
 #include "UOPstream.H"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <thread>
@@ -54,6 +55,12 @@ std::int64_t pmsh::Communicator::max(std::int64_t x) const
     return Foam::returnReduce(x, Foam::maxOp<std::int64_t>());
 }
 
+void pmsh::Communicator::barrier() const
+{
+    // A reduction: v1912's UPstream has no barrier
+    all(true);
+}
+
 bool pmsh::Communicator::all(bool flag) const
 {
     return Foam::returnReduce(flag, Foam::andOp<bool>());
@@ -68,24 +75,23 @@ bool pmsh::Communicator::any(bool flag) const
 namespace
 {
 
-// x of every rank, in rank order, on every rank
-template<class T>
-Foam::List<T> gatherAll(T x)
-{
-    Foam::List<T> all(Foam::UPstream::nProcs(), x);
-    all[Foam::UPstream::myProcNo()] = x;
-    pmsh::foam::allGatherList(all);
-    return all;
-}
-
-} // End anonymous namespace
-
-
-namespace
-{
-
-// The tag of the master's "done" message (not one OpenFOAM uses)
+// Tags of pmshFoam's own messages (not ones OpenFOAM uses)
 constexpr int masterDoneTag = 4712;
+constexpr int broadcastTag = 4713;
+constexpr int exchangeTag = 4714;
+
+// MPI counts are ints: payloads go in messages of at most 1 GiB
+constexpr std::size_t maxMessageBytes = std::size_t(1) << 30;
+
+// Call send(offset, n) for each message of a payload of `bytes` bytes
+template<class Message>
+void forEachMessage(std::size_t bytes, const Message& message)
+{
+    for (std::size_t offset = 0; offset < bytes; offset += maxMessageBytes)
+    {
+        message(offset, std::min(maxMessageBytes, bytes - offset));
+    }
+}
 
 } // End anonymous namespace
 
@@ -131,7 +137,7 @@ std::int64_t pmsh::Communicator::exclusiveScan(std::int64_t x) const
 {
     // Not globalIndex: its offsets are labels (32-bit in Debian's build)
     // and global point counts pass 2^31
-    const Foam::List<std::int64_t> all = gatherAll(x);
+    const std::vector<std::int64_t> all = allGather(x);
     std::int64_t below = 0;
     for (int r = 0; r < rank_; ++r)
     {
@@ -141,60 +147,127 @@ std::int64_t pmsh::Communicator::exclusiveScan(std::int64_t x) const
 }
 
 
-std::vector<double> pmsh::Communicator::allGather(double x) const
+void pmsh::Communicator::broadcastRaw(char* data, std::size_t bytes) const
 {
-    const Foam::List<double> all = gatherAll(x);
-    return std::vector<double>(all.begin(), all.end());
-}
-
-
-void pmsh::Communicator::broadcastBytes(std::vector<char>& bytes) const
-{
-    Foam::List<char> buffer;
-    if (master())
+    // A binomial tree from the master (as MPI_Bcast's): each rank receives
+    // from the rank its lowest set bit away, then sends on to the ranks
+    // below that bit; every message goes straight from and into `data`
+    using namespace Foam;
+    int mask = 1;
+    for (; mask < size_; mask <<= 1)
     {
-        buffer = Foam::UList<char>(bytes.data(), Foam::label(bytes.size()));
+        if (rank_ & mask)
+        {
+            forEachMessage(bytes, [&](std::size_t offset, std::size_t n)
+            {
+                UIPstream::read
+                (
+                    UPstream::commsTypes::scheduled, rank_ - mask, data + offset,
+                    std::streamsize(n), broadcastTag
+                );
+            });
+            break;
+        }
     }
-    pmsh::foam::broadcast(buffer);
-    bytes.assign(buffer.begin(), buffer.end());
-    traffic_.broadcastBytes += double(bytes.size());
+    for (mask >>= 1; mask > 0; mask >>= 1)
+    {
+        if (rank_ + mask < size_)
+        {
+            forEachMessage(bytes, [&](std::size_t offset, std::size_t n)
+            {
+                UOPstream::write
+                (
+                    UPstream::commsTypes::scheduled, rank_ + mask, data + offset,
+                    std::streamsize(n), broadcastTag
+                );
+            });
+        }
+    }
 }
 
 
-std::vector<std::vector<char>> pmsh::Communicator::exchangeBytes
+std::vector<char> pmsh::Communicator::allGatherRaw
 (
-    const std::vector<std::vector<char>>& send
+    const char* item,
+    std::size_t bytes
 ) const
 {
-    if (!parallel_)
+    Foam::List<Foam::List<char>> all(size_);
+    all[rank_] = Foam::UList<char>(const_cast<char*>(item), Foam::label(bytes));
+    pmsh::foam::allGatherList(all);
+    std::vector<char> gathered;
+    gathered.reserve(size_*bytes);
+    for (const Foam::List<char>& fromRank : all)
     {
-        return send;
+        gathered.insert(gathered.end(), fromRank.begin(), fromRank.end());
     }
-    if (int(send.size()) != size_)
+    return gathered;
+}
+
+
+std::vector<std::size_t> pmsh::Communicator::exchangeCounts
+(
+    const std::vector<std::size_t>& counts
+) const
+{
+    if (int(counts.size()) != size_)
     {
         throw FatalError(msg() << "exchange needs one buffer per rank", "Communicator::exchange");
     }
-
-    Foam::List<Foam::List<char>> sendBuffers(size_);
+    Foam::labelList send(size_), received(size_);
     for (int r = 0; r < size_; ++r)
     {
-        if (r != rank_ && !send[r].empty())
+        if (counts[r] > std::size_t(Foam::labelMax))
         {
-            ++traffic_.messages;
-            traffic_.bytes += double(send[r].size());
+            throw FatalError
+            (
+                msg() << "Too much data for one rank to send to another: "
+                    << counts[r] << " items.\nUse more ranks",
+                "Communicator::exchange"
+            );
         }
-        sendBuffers[r] = Foam::UList<char>
-        (
-            const_cast<char*>(send[r].data()), Foam::label(send[r].size())
-        );
+        send[r] = Foam::label(counts[r]);
     }
-    Foam::List<Foam::List<char>> recvBuffers;
-    Foam::Pstream::exchange<Foam::List<char>, char>(sendBuffers, recvBuffers);
+    Foam::UPstream::allToAll(send, received);
+    return std::vector<std::size_t>(received.begin(), received.end());
+}
 
-    std::vector<std::vector<char>> recv(size_);
+
+void pmsh::Communicator::exchangeRaw
+(
+    const std::vector<const char*>& send,
+    const std::vector<std::size_t>& sendBytes,
+    const std::vector<char*>& recv,
+    const std::vector<std::size_t>& recvBytes
+) const
+{
+    using namespace Foam;
+    const label firstRequest = UPstream::nRequests();
     for (int r = 0; r < size_; ++r)
     {
-        recv[r].assign(recvBuffers[r].begin(), recvBuffers[r].end());
+        if (r == rank_) continue;
+        forEachMessage(recvBytes[r], [&](std::size_t offset, std::size_t n)
+        {
+            UIPstream::read
+            (
+                UPstream::commsTypes::nonBlocking, r, recv[r] + offset,
+                std::streamsize(n), exchangeTag
+            );
+        });
     }
-    return recv;
+    for (int r = 0; r < size_; ++r)
+    {
+        if (r == rank_ || sendBytes[r] == 0) continue;
+        ++traffic_.messages;
+        traffic_.bytes += double(sendBytes[r]);
+        forEachMessage(sendBytes[r], [&](std::size_t offset, std::size_t n)
+        {
+            UOPstream::write
+            (
+                UPstream::commsTypes::nonBlocking, r, send[r] + offset,
+                std::streamsize(n), exchangeTag
+            );
+        });
+    }
+    UPstream::waitRequests(firstRequest);
 }

@@ -1,4 +1,5 @@
 #include "meshQuality.H"
+#include "checkMeshFaceMetrics.H"
 #include "foamShims.H"
 #include "Info.H"
 #include "stageLog.H"
@@ -116,28 +117,9 @@ void cellCentresAndVolumes
 }
 
 
-//- primitiveMeshTools::faceSkewness (d: owner to neighbour centre) and
-//  boundaryFaceSkewness (d: the normal part of the owner's offset, with
-//  its own normalisation), as polyMeshTools::faceSkewness applies them
-inline scalar skewness
-(
-    const pointField& p,
-    const face& f,
-    const vector& centre,
-    const vector& area,
-    const vector& Cpf,
-    const vector& d,
-    const scalar fd0
-)
+inline pmsh::point3 asPoint3(const Foam::vector& v)
 {
-    const vector sv = Cpf - ((area & Cpf)/((area & d) + ROOTVSMALL))*d;
-    const vector svHat = sv/(mag(sv) + ROOTVSMALL);
-    scalar fd = fd0*mag(d) + ROOTVSMALL;
-    forAll(f, pi)
-    {
-        fd = max(fd, mag(svHat & (p[f[pi]] - centre)));
-    }
-    return mag(sv)/fd;
+    return {v.x(), v.y(), v.z()};
 }
 
 } // End anonymous namespace
@@ -189,20 +171,22 @@ pmsh::meshQualityReport pmsh::meshQualityOf
     {
         const face& f = faces[facei];
         triangleCentreAndArea(p, f, c, s);
+        const pmsh::point3 a = asPoint3(p[f[0]]), b = asPoint3(p[f[1]]), e = asPoint3(p[f[2]]);
+        const pmsh::point3 fc = asPoint3(c);
+        const pmsh::vector3 S = asPoint3(s);
         const Foam::point& ownCc = centres[own[facei]];
-        const Foam::vector Cpf = c - ownCc;
+        const pmsh::vector3 Cpf = asPoint3(c - ownCc);
         const bool internal = facei < nInternal;
         if (!internal && !coupled[facei - nInternal])
         {
-            const Foam::vector normal = s/(mag(s) + ROOTVSMALL);
-            maxSkew = std::max(maxSkew, double(skewness(p, f, c, s, Cpf, normal*(normal & Cpf), 0.4)));
+            maxSkew = std::max(maxSkew, boundaryFaceMetricsOf(a, b, e, fc, S, Cpf).skewness);
             continue;
         }
         const Foam::point& neiCc =
             internal ? centres[mesh.faceNeighbour()[facei]] : neighbourCentres[facei - nInternal];
-        const Foam::vector d = neiCc - ownCc;
-        const double ortho = (d & s)/(mag(d)*mag(s) + ROOTVSMALL);
-        maxSkew = std::max(maxSkew, double(skewness(p, f, c, s, Cpf, d, 0.2)));
+        const pmsh::vector3 d = asPoint3(neiCc - ownCc);
+        const double ortho = nonOrthogonalityCos(S, d);
+        maxSkew = std::max(maxSkew, internalFaceSkewness(a, b, e, fc, S, Cpf, d));
         if (counted[facei])
         {
             minCos = std::min(minCos, ortho);
@@ -217,41 +201,48 @@ pmsh::meshQualityReport pmsh::meshQualityOf
     }
     const double minVolume = mesh.nCells() ? double(min(volumes)) : 0;
 
-    meshQualityReport report;
-    const std::vector<double> minCosR = comm.allGather(minCos);
-    const std::vector<double> sumCosR = comm.allGather(sumCos);
-    const std::vector<double> countedR = comm.allGather(double(nCounted));
-    const std::vector<double> minProcCosR = comm.allGather(minProcessorCos);
-    const std::vector<double> severeR = comm.allGather(double(nSevere));
-    const std::vector<double> skewR = comm.allGather(maxSkew);
-    const std::vector<double> volumeR = comm.allGather(minVolume);
-    const std::vector<double> minDihedralR = comm.allGather(volume.minDihedral);
-    const std::vector<double> maxDihedralR = comm.allGather(volume.maxDihedral);
-    const std::vector<double> aspectR = comm.allGather(volume.maxAspectRatio);
+    // This rank's figures, gathered in one collective
+    struct rankFigures
+    {
+        double minCos, sumCos, minProcessorCos, maxSkew, minVolume;
+        double minDihedral, maxDihedral, maxAspectRatio;
+        std::int64_t nCounted, nSevere;
+    };
+    const std::vector<rankFigures> ranks = comm.allGather
+    (
+        rankFigures
+        {
+            minCos, sumCos, minProcessorCos, maxSkew, minVolume,
+            volume.minDihedral, volume.maxDihedral, volume.maxAspectRatio,
+            nCounted, nSevere
+        }
+    );
 
+    meshQualityReport report;
     meshQuality& all = report.overall;
-    double allSumCos = 0, allCounted = 0, allMinCos = 1, allMinProcCos = 1;
-    all.minVolume = volumeR.empty() ? 0 : volumeR[0];
+    double allSumCos = 0, allMinCos = 1, allMinProcCos = 1;
+    std::int64_t allCounted = 0;
+    all.minVolume = ranks.empty() ? 0 : ranks[0].minVolume;
     all.minDihedral = 180;
-    for (int r = 0; r < comm.size(); ++r)
+    for (const rankFigures& r : ranks)
     {
         meshQuality q;
-        q.maxNonOrthogonality = degreesOfCos(minCosR[r]);
+        q.maxNonOrthogonality = degreesOfCos(r.minCos);
         q.avgNonOrthogonality =
-            countedR[r] > 0 ? degreesOfCos(sumCosR[r]/countedR[r]) : 0;
-        q.maxProcessorNonOrthogonality = degreesOfCos(minProcCosR[r]);
-        q.maxSkewness = skewR[r];
-        q.minVolume = volumeR[r];
-        q.minDihedral = minDihedralR[r];
-        q.maxDihedral = maxDihedralR[r];
-        q.maxAspectRatio = aspectR[r];
-        q.nSevereNonOrthogonal = std::int64_t(severeR[r]);
+            r.nCounted > 0 ? degreesOfCos(r.sumCos/double(r.nCounted)) : 0;
+        q.maxProcessorNonOrthogonality = degreesOfCos(r.minProcessorCos);
+        q.maxSkewness = r.maxSkew;
+        q.minVolume = r.minVolume;
+        q.minDihedral = r.minDihedral;
+        q.maxDihedral = r.maxDihedral;
+        q.maxAspectRatio = r.maxAspectRatio;
+        q.nSevereNonOrthogonal = r.nSevere;
         report.perRank.push_back(q);
 
-        allMinCos = std::min(allMinCos, minCosR[r]);
-        allMinProcCos = std::min(allMinProcCos, minProcCosR[r]);
-        allSumCos += sumCosR[r];
-        allCounted += countedR[r];
+        allMinCos = std::min(allMinCos, r.minCos);
+        allMinProcCos = std::min(allMinProcCos, r.minProcessorCos);
+        allSumCos += r.sumCos;
+        allCounted += r.nCounted;
         all.maxSkewness = std::max(all.maxSkewness, q.maxSkewness);
         all.minVolume = std::min(all.minVolume, q.minVolume);
         all.minDihedral = std::min(all.minDihedral, q.minDihedral);
@@ -260,7 +251,7 @@ pmsh::meshQualityReport pmsh::meshQualityOf
         all.nSevereNonOrthogonal += q.nSevereNonOrthogonal;
     }
     all.maxNonOrthogonality = degreesOfCos(allMinCos);
-    all.avgNonOrthogonality = allCounted > 0 ? degreesOfCos(allSumCos/allCounted) : 0;
+    all.avgNonOrthogonality = allCounted > 0 ? degreesOfCos(allSumCos/double(allCounted)) : 0;
     all.maxProcessorNonOrthogonality = degreesOfCos(allMinProcCos);
     return report;
 }
