@@ -73,7 +73,6 @@ Usage
 #include "foamMeshOutput.H"
 #include "Geometry.H"
 #include "globalNumbering.H"
-#include "Info.H"
 #include "memoryEstimate.H"
 #include "meshSettings.H"
 #include "partitionCoarseMesh.H"
@@ -230,7 +229,9 @@ int main(int argc, char *argv[])
     FatalIOError.throwExceptions();
 
     const pmsh::Communicator comm;
-    pmsh::setLogRank(comm.rank(), comm.parallel());
+    // The log goes to a file in every Allrun: write it as the run goes, as
+    // Info << endl does, so that a long or killed run shows where it is
+    std::cout << std::unitbuf;
 
     int exitCode = 0;
     try

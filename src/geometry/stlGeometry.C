@@ -6,7 +6,7 @@
 #include "stlGeometry.H"
 #include "netgenInterface.H"
 #include "pmshError.H"
-#include "Info.H"
+#include "streamManip.H"
 #include "matchByPoints.H"
 #include "triangleGeometry.H"
 
@@ -18,6 +18,8 @@
 #include <map>
 #include <queue>
 #include <sstream>
+
+using Foam::Info;
 
 // * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
 
@@ -781,10 +783,10 @@ void logCurvatureSizing
         nPoints += solid.nPoints;
         nAtFloor += solid.nAtFloor;
     }
-    Info()
+    Info
         << "    curvature sizing (curvatureRefinement "
-        << toString(curvatureRefinement) << ", minCellSize "
-        << toString(minCellSize) << "): " << nPoints
+        << toString(curvatureRefinement).c_str() << ", minCellSize "
+        << toString(minCellSize).c_str() << "): " << nPoints
         << " STL points below maxCellSize, " << nAtFloor
         << " held at minCellSize\n";
     for (std::size_t i = 0; i < sizing.solids.size(); ++i)
@@ -792,9 +794,9 @@ void logCurvatureSizing
         const auto& solid = sizing.solids[i];
         if (solid.nPoints)
         {
-            Info()
-                << "        " << solidNames[i] << ": " << solid.nPoints
-                << " points, smallest size " << toString(solid.smallest)
+            Info
+                << "        " << solidNames[i].c_str() << ": " << solid.nPoints
+                << " points, smallest size " << toString(solid.smallest).c_str()
                 << ", about " << label(std::lround(solid.faces))
                 << " boundary faces at these sizes, "
                 << label(std::lround(solid.uniformFaces))
@@ -885,9 +887,9 @@ ng::volumeMesh retriedStlMesh
             sizes.maxCellSize
         );
     const double ladderLimit = 2*attemptLimit;
-    Info()
-        << "    time limit: " << toString(attemptLimit) << " s an attempt, "
-        << toString(ladderLimit) << " s for all (coarseTimeLimit"
+    Info
+        << "    time limit: " << toString(attemptLimit).c_str() << " s an attempt, "
+        << toString(ladderLimit).c_str() << " s for all (coarseTimeLimit"
         << (sizes.coarseTimeLimit > 0 ? "" : ", from the surface's size")
         << ")\n";
     const auto start = std::chrono::steady_clock::now();
@@ -932,9 +934,9 @@ ng::volumeMesh retriedStlMesh
             );
             if (i > 0)
             {
-                Info()
+                Info
                     << "    Netgen's STL mesh succeeded at attempt " << i + 1
-                    << " (" << attempts[i].change << ")\n";
+                    << " (" << attempts[i].change.c_str() << ")\n";
             }
             if (attempts[i].curvatureRefinement > 0)
             {
@@ -959,9 +961,9 @@ ng::volumeMesh retriedStlMesh
             reasons.push_back(e.reason());
             if (i + 1 < attempts.size())
             {
-                Info()
-                    << "    Netgen's STL mesh failed (" << e.reason()
-                    << "); retrying with " << attempts[i + 1].change << '\n';
+                Info
+                    << "    Netgen's STL mesh failed (" << e.reason().c_str()
+                    << "); retrying with " << attempts[i + 1].change.c_str() << '\n';
             }
         }
     }

@@ -2,7 +2,7 @@
 #include "pmshError.H"
 #include "failTogether.H"
 #include "foamShims.H"
-#include "Info.H"
+#include "streamManip.H"
 
 // OpenFOAM
 #include "argList.H"
@@ -19,6 +19,10 @@
 #include <numeric>
 #include <set>
 #include <tuple>
+
+using Foam::Info;
+using Foam::fixed;
+using Foam::setprecision;
 
 namespace
 {
@@ -1119,8 +1123,8 @@ Foam::dictionary pmsh::decompositionDict
         }
         if (n != nParts)
         {
-            pmsh::Info()
-                << "Note: numberOfSubdomains " << inFile << " in " << dictFile
+            Info
+                << "Note: numberOfSubdomains " << inFile.c_str() << " in " << dictFile.c_str()
                 << " is replaced by the number of ranks, " << nParts << "\n";
         }
     }
@@ -1212,13 +1216,13 @@ std::vector<pmsh::label> pmsh::partitionCells
     // expected fine cells now, keeping every part a manifold
     const double before = weightImbalance(weights, nParts, cellPart);
     const label moved = balancePartition(coarse, nParts, weights, cellPart);
-    Info()
-        << std::fixed << std::setprecision(3)
+    Info
+        << fixed << setprecision(3)
         << "    expected fine cells per part max/mean: " << before
         << " from the method, "
         << weightImbalance(weights, nParts, cellPart)
         << " after moving " << moved << " coarse cells\n"
-        << std::defaultfloat;
+        << defaultfloat;
     return cellPart;
 }
 

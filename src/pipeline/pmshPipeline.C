@@ -1,5 +1,5 @@
 #include "pmshPipeline.H"
-#include "Info.H"
+#include "streamManip.H"
 #include "stageClock.H"
 #include "pmshError.H"
 #include "meshPatch.H"
@@ -11,6 +11,12 @@
 #include <iomanip>
 #include <sstream>
 #include <ostream>
+
+using Foam::Info;
+using Foam::Pout;
+using Foam::fixed;
+using Foam::setprecision;
+using Foam::setw;
 
 std::string pmsh::rankPrefix(const Communicator& comm)
 {
@@ -108,8 +114,8 @@ void pmsh::setPatchTypes(CoarseMesh& coarse, const meshSettings& settings)
 
 void pmsh::logCoarseMesh(const CoarseMesh& coarse)
 {
-    Info()
-        << "    volume filled by " << coarse.volumeMesher << '\n'
+    Info
+        << "    volume filled by " << coarse.volumeMesher.c_str() << '\n'
         << "    coarse cells: " << coarse.nCells()
         << ", points: " << coarse.nPoints()
         << ", boundary faces: " << coarse.boundary.size() << '\n'
@@ -121,9 +127,9 @@ void pmsh::logCoarseMesh(const CoarseMesh& coarse)
     }
     for (std::size_t p = 0; p < coarse.patches.size(); ++p)
     {
-        Info() << ' ' << coarse.patches[p].name << " (" << faces[p] << ')';
+        Info << ' ' << coarse.patches[p].name.c_str() << " (" << faces[p] << ')';
     }
-    Info() << '\n';
+    Info << '\n';
     if (coarse.zones.empty())
     {
         return;
@@ -133,12 +139,12 @@ void pmsh::logCoarseMesh(const CoarseMesh& coarse)
     {
         ++cells[z];
     }
-    Info() << "    zones (cellZones, coarse cells):";
+    Info << "    zones (cellZones, coarse cells):";
     for (std::size_t z = 0; z < coarse.zones.size(); ++z)
     {
-        Info() << ' ' << coarse.zones[z] << " (" << cells[z] << ')';
+        Info << ' ' << coarse.zones[z].c_str() << " (" << cells[z] << ')';
     }
-    Info() << "\n    coarse faces between zones: " << coarse.zoneFaces.size() << '\n';
+    Info << "\n    coarse faces between zones: " << coarse.zoneFaces.size() << '\n';
 }
 
 
@@ -173,9 +179,9 @@ void pmsh::logLocalSizes(const CoarseMesh& coarse, const meshSettings& settings)
                   + edge(t[1], t[2]) + edge(t[1], t[3]) + edge(t[2], t[3]);
             }
         }
-        Info()
-            << "    region " << r.name << " (" << r.shapeName()
-            << ", maxCellSize " << r.size << note(r.size) << "): " << nCells
+        Info
+            << "    region " << r.name.c_str() << " (" << r.shapeName()
+            << ", maxCellSize " << r.size << note(r.size).c_str() << "): " << nCells
             << " coarse cells, mean edge "
             << (nCells ? sum/(6*nCells) : 0) << '\n';
     }
@@ -201,9 +207,9 @@ void pmsh::logLocalSizes(const CoarseMesh& coarse, const meshSettings& settings)
                 sum += edge(f.v[0], f.v[1]) + edge(f.v[1], f.v[2]) + edge(f.v[2], f.v[0]);
             }
         }
-        Info()
-            << "    patch " << coarse.patches[p].name << " (maxCellSize " << size
-            << note(size) << "): " << nFaces << " coarse boundary faces, mean edge "
+        Info
+            << "    patch " << coarse.patches[p].name.c_str() << " (maxCellSize " << size
+            << note(size).c_str() << "): " << nFaces << " coarse boundary faces, mean edge "
             << (nFaces ? sum/(3*nFaces) : 0) << '\n';
     }
 }
@@ -217,7 +223,7 @@ void pmsh::logPartSizes(const Communicator& comm, const std::vector<label>& cell
         ++size[p];
     }
     const auto [small, large] = std::minmax_element(size.begin(), size.end());
-    Info()
+    Info
         << "    coarse cells per part min/avg/max: " << *small << " / "
         << double(cellPart.size())/comm.size() << " / " << *large << '\n';
 }
@@ -226,18 +232,18 @@ void pmsh::logPartSizes(const Communicator& comm, const std::vector<label>& cell
 void pmsh::logSurfaceSizes(const Communicator& comm, const FineSurface& surface)
 {
     const minAvgMax n = reduceMinAvgMax(comm, double(surface.triangles.size()));
-    Info() << std::fixed << std::setprecision(0);
+    Info << fixed << setprecision(0);
     if (comm.parallel())
     {
-        Info()
+        Info
             << "    fine surface triangles per rank min/avg/max: "
             << n.min << " / " << n.avg << " / " << n.max << '\n';
     }
     else
     {
-        Info() << "    fine surface triangles: " << n.max << '\n';
+        Info << "    fine surface triangles: " << n.max << '\n';
     }
-    Info() << std::defaultfloat;
+    Info << defaultfloat;
 }
 
 
@@ -254,7 +260,7 @@ pmsh::projectionRepairSummary pmsh::logProjectionRepair
     total.meanDistance = total.nPointsOff ? sumDistance/total.nPointsOff : 0;
     if (total.nPointsOff)
     {
-        Info()
+        Info
             << "    refined points left off the geometry (their projection"
             << " folded the surface): " << total.nPointsOff
             << ", distance from the geometry max " << total.maxDistance
@@ -300,19 +306,19 @@ void pmsh::balanceAndLog
 {
     if (!comm.parallel())
     {
-        Info() << "    serial: nothing to balance\n";
+        Info << "    serial: nothing to balance\n";
         return;
     }
     const fineBalanceStats stats = balanceFineCells(comm, share);
     volume.nCells = label(share.tets.size());
     const minAvgMax n = reduceMinAvgMax(comm, double(share.tets.size()));
-    Info()
-        << std::fixed << std::setprecision(3)
+    Info
+        << fixed << setprecision(3)
         << "    largest rank's fine cells over the mean: " << stats.before
         << " -> " << stats.after << " (" << stats.moved << " cells moved)\n"
-        << std::setprecision(0)
+        << setprecision(0)
         << "    fine cells per rank min/avg/max: " << n.min << " / " << n.avg
-        << " / " << n.max << '\n' << std::defaultfloat;
+        << " / " << n.max << '\n' << defaultfloat;
 }
 
 
@@ -357,21 +363,21 @@ std::int64_t pmsh::logVolumeMeshing
     const TetMesh& tets = volume.mesh;
     if (volume.attempts > 1)
     {
-        Pout()
-            << "    partition " << comm.rank() << " meshed by " << volume.backend
+        Pout
+            << "    partition " << comm.rank() << " meshed by " << volume.backend.c_str()
             << " at attempt " << volume.attempts << "; earlier attempts:"
-            << volume.failures << '\n';
+            << volume.failures.c_str() << '\n';
     }
     const std::int64_t nCells = comm.sum(std::int64_t(tets.tets.size()));
     const minAvgMax n = reduceMinAvgMax(comm, double(tets.tets.size()));
-    Info() << std::fixed << std::setprecision(0);
+    Info << fixed << setprecision(0);
     if (comm.parallel())
     {
-        Info()
+        Info
             << "    fine cells per rank min/avg/max: "
             << n.min << " / " << n.avg << " / " << n.max << '\n';
     }
-    Info() << "    fine cells: " << nCells << '\n' << std::defaultfloat;
+    Info << "    fine cells: " << nCells << '\n' << defaultfloat;
     return nCells;
 }
 
@@ -414,15 +420,15 @@ void pmsh::logWritten
     const meshSizes& sizes
 )
 {
-    Info()
-        << "    written to " << caseDir
+    Info
+        << "    written to " << caseDir.c_str()
         << (comm.parallel() ? "/processor*" : "/constant/polyMesh") << '\n';
     const minAvgMax faces = reduceMinAvgMax(comm, sizes.faces);
     const minAvgMax points = reduceMinAvgMax(comm, sizes.points);
-    Info() << std::fixed << std::setprecision(0);
+    Info << fixed << setprecision(0);
     if (comm.parallel())
     {
-        Info()
+        Info
             << "    faces per rank min/avg/max: " << faces.min << " / " << faces.avg
             << " / " << faces.max << '\n'
             << "    points per rank min/avg/max: " << points.min << " / " << points.avg
@@ -430,7 +436,7 @@ void pmsh::logWritten
     }
     else
     {
-        Info() << "    faces: " << faces.max << ", points: " << points.max << '\n';
+        Info << "    faces: " << faces.max << ", points: " << points.max << '\n';
     }
 
     // Every physical patch (every rank has all of them, some empty)
@@ -441,23 +447,23 @@ void pmsh::logWritten
     }
     if (!sizes.zones.empty())
     {
-        Info() << "    cellZones (cells):";
+        Info << "    cellZones (cells):";
         for (std::size_t z = 0; z < sizes.zones.size(); ++z)
         {
-            Info() << ' ' << sizes.zones[z] << ' ' << comm.sum(sizes.zoneCells[z]);
+            Info << ' ' << sizes.zones[z].c_str() << ' ' << comm.sum(sizes.zoneCells[z]);
         }
-        Info() << '\n';
+        Info << '\n';
     }
-    Info() << "    patches (faces, type and why):\n";
+    Info << "    patches (faces, type and why):\n";
     for (const meshPatch& p : sizes.patches)
     {
         const std::int64_t nFaces = comm.sum(std::int64_t(p.size));
-        Info()
-            << "        " << std::left << std::setw(int(width)) << p.name << ' '
-            << std::right << std::setw(10) << nFaces << "  " << std::left
-            << std::setw(13) << p.type << std::right << ' ' << p.typeOrigin << '\n';
+        Info
+            << "        " << left << setw(int(width)) << p.name.c_str() << ' '
+            << right << setw(10) << nFaces << "  " << left
+            << setw(13) << p.type.c_str() << right << ' ' << p.typeOrigin.c_str() << '\n';
     }
-    Info() << std::defaultfloat;
+    Info << defaultfloat;
 }
 
 
@@ -548,22 +554,22 @@ void pmsh::reportSummary
         }
     }
 
-    Info()
+    Info
         << "Summary\n"
         << "    ranks:        " << comm.size() << '\n'
         << "    coarse cells: " << coarseCells << '\n'
         << "    fine cells:   " << nFineCells << '\n'
-        << std::fixed << std::setprecision(2);
+        << fixed << setprecision(2);
     for (const stageLog::stageTime& t : stages.times())
     {
-        Info() << "    " << std::left << std::setw(12) << t.key
-            << std::right << std::setw(9) << t.max << " s\n";
+        Info << "    " << left << setw(12) << t.key.c_str()
+            << right << setw(9) << t.max << " s\n";
     }
-    Info()
+    Info
         << "    total time:   " << total << " s\n"
-        << std::setprecision(0)
+        << setprecision(0)
         << "    fine cells/s per core (stages 2-6): " << perCore << '\n'
-        << std::setprecision(1)
+        << setprecision(1)
         << "    peak memory per rank (MiB) min/avg/max: "
         << memoryMiB.min << " / " << memoryMiB.avg << " / " << memoryMiB.max << '\n'
         << "    bytes per fine cell (all ranks): "
@@ -572,16 +578,16 @@ void pmsh::reportSummary
         << "    max non-orthogonality (checkMesh): "
         << quality.overall.maxNonOrthogonality << " degrees, average "
         << quality.overall.avgNonOrthogonality << '\n'
-        << std::setprecision(3)
+        << setprecision(3)
         << "    max skewness (checkMesh): " << quality.overall.maxSkewness << '\n'
-        << std::defaultfloat << std::setprecision(6);
+        << defaultfloat << setprecision(6);
     logEstimateAccuracy
     (
         estimate, double(nFineCells),
         *std::max_element(cellsPerRank.begin(), cellsPerRank.end()),
         memoryBytes.max
     );
-    Info() << "\nEnd\n\n";
+    Info << "\nEnd\n\n";
 
     if (!comm.master())
     {
