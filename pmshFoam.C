@@ -486,7 +486,7 @@ int main(int argc, char *argv[])
     {
         // A failure the other ranks cannot know about: stop them all
         std::cerr << pmsh::rankPrefix(comm)
-            << pmsh::asFatalError(std::current_exception()).report() << std::flush;
+            << pmsh::FatalError::of(std::current_exception()).report() << std::flush;
         comm.abort(1);
     }
 

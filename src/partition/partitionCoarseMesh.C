@@ -13,7 +13,6 @@
 #include "UPstream.H"
 
 #include <algorithm>
-#include <cctype>
 #include <iomanip>
 #include <map>
 #include <numeric>
@@ -725,28 +724,6 @@ namespace
 
 using namespace pmsh;
 
-// While one lives, OpenFOAM's FatalError and FatalIOError throw (rather
-// than end the process); the previous setting comes back after.
-class foamErrorsThrow
-{
-    const bool error_;
-    const bool ioError_;
-public:
-    foamErrorsThrow()
-    :
-        error_(foam::throwExceptions(Foam::FatalError, true)),
-        ioError_(foam::throwExceptions(Foam::FatalIOError, true))
-    {}
-    ~foamErrorsThrow()
-    {
-        foam::throwExceptions(Foam::FatalIOError, ioError_);
-        foam::throwExceptions(Foam::FatalError, error_);
-    }
-    foamErrorsThrow(const foamErrorsThrow&) = delete;
-    foamErrorsThrow& operator=(const foamErrorsThrow&) = delete;
-};
-
-
 // While one lives, OpenFOAM runs serial: the decomposition is the master's
 // alone (the others do not take part in its reductions), as OpenFOAM's own
 // utilities do it (renumberMesh)
@@ -767,31 +744,6 @@ public:
     serialSection(const serialSection&) = delete;
     serialSection& operator=(const serialSection&) = delete;
 };
-
-
-// The text of an OpenFOAM error: its message (Foam::error::what() says only
-// "std::exception"), and the file and line of an IOerror
-std::string foamErrorText(const Foam::error& e)
-{
-    std::string text = e.message();
-    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
-    {
-        text.pop_back();
-    }
-    if (const auto* io = dynamic_cast<const Foam::IOerror*>(&e))
-    {
-        if (!io->ioFileName().empty())
-        {
-            text += "\n(" + io->ioFileName();
-            if (io->ioStartLineNumber() > 0)
-            {
-                text += " at line " + std::to_string(io->ioStartLineNumber());
-            }
-            text += ")";
-        }
-    }
-    return text;
-}
 
 
 // Methods whose decompose(globalCellCells, ...) is NotImplemented: they need
@@ -982,7 +934,7 @@ std::vector<label> decomposeCells
         (
             msg() << "The " << methodFrom(dict) << " failed for "
                 << nCells << " coarse cells into " << nParts << " parts:\n"
-                << foamErrorText(e) << "\n"
+                << FatalError::of(e).message() << "\n"
                 << "Valid decomposition methods: " << validDecompositionMethods(),
             "partitionCells"
         );
@@ -1076,7 +1028,7 @@ Foam::dictionary pmsh::decompositionDict
             throw FatalError
             (
                 msg() << "Cannot read the decomposition dictionary " << dictFile
-                    << ":\n" << foamErrorText(e),
+                    << ":\n" << FatalError::of(e).message(),
                 "decompositionDict"
             );
         }
