@@ -59,18 +59,15 @@ Usage
 #include "argList.H"
 #include "Time.H"
 #include "IOdictionary.H"
-#include "fileOperation.H"
-#include "IFstream.H"
 
+#include "caseControl.H"
 #include "caseOutput.H"
 #include "coarseMesh.H"
-#include "cyclicFaces.H"
 #include "Communicator.H"
 #include "failTogether.H"
 #include "fieldTemplates.H"
 #include "foamShims.H"
 #include "fineCellWeights.H"
-#include "foamMeshOutput.H"
 #include "Geometry.H"
 #include "globalNumbering.H"
 #include "memoryEstimate.H"
@@ -79,10 +76,9 @@ Usage
 #include "partitionVolume.H"
 #include "childProcess.H"
 #include "pmshPipeline.H"
-#include "procAddressing.H"
 #include "stageLog.H"
 #include "surfaceRefinement.H"
-#include "tetsToPolyMesh.H"
+#include "writeRankMesh.H"
 
 #include <mpi.h>
 #include <malloc.h>
@@ -181,65 +177,31 @@ int main(int argc, char *argv[])
         pmsh::foam::initNullMPI();
     }
 
-    // v1912's collated fileHandler deadlocks (every rank waiting in its
-    // readDir) when it looks for the processors directory of a case that
-    // has none yet, as a case pmshFoam meshes: the case is read
-    // uncollated and written through the fileHandler asked for: by
-    // -fileHandler, FOAM_FILEHANDLER, etc/controlDict (argList has set it)
-    // or the case's controlDict (which Time would apply while it reads the
-    // case: so it is taken out here, and applied at the write)
-    word outputFileHandler = fileHandler().type();
-    {
-        autoPtr<fileOperation> reader(fileOperation::New("uncollated", false));
-        pmsh::foam::setFileHandler(reader);
-    }
-    const fileName controlDictFile =
-        args.rootPath()/args.globalCaseName()/"system"/Time::controlDictName;
-    if (!isFile(controlDictFile))
-    {
-        // Every rank sees it: one error, and all stop together
-        if (Pstream::master())
-        {
-            std::cerr
-                << pmsh::FatalError
-                   (
-                       "cannot find file \"" + controlDictFile + "\"\n"
-                       "A case needs system/controlDict, as for any OpenFOAM"
-                       " application (see the tutorials)",
-                       "pmshFoam"
-                   ).report() << std::flush;
-        }
-        endRun(1);
-    }
-    IFstream controlDictStream(controlDictFile);
-    dictionary controlDict(controlDictStream);
-    controlDict.name() = controlDictFile;
-    if (dictionary* switches = pmsh::foam::findDict(controlDict, "OptimisationSwitches"))
-    {
-        if (switches->readIfPresent("fileHandler", outputFileHandler))
-        {
-            switches->remove("fileHandler");
-        }
-    }
-
-    Info<< "Create time\n" << endl;
-    Time runTime(controlDict, args.rootPath(), args.caseName());
-    // Errors of every rank are agreed on before anyone stops (failTogether)
-    FatalError.throwExceptions();
-    FatalIOError.throwExceptions();
-
     const pmsh::Communicator comm;
     // The log goes to a file in every Allrun: write it as the run goes, as
     // Info << endl does, so that a long or killed run shows where it is
     std::cout << std::unitbuf;
 
+    // Left to endRun's std::exit, as a failed run's: not destroyed
+    std::optional<Time> caseTime;
     int exitCode = 0;
     try
     {
+        pmsh::caseControl control;
+        pmsh::failTogether(comm, [&]
+        {
+            control = pmsh::readCaseControl(args);
+        });
+        Info<< "Create time\n" << endl;
+        Time& runTime =
+            caseTime.emplace(control.controlDict, args.rootPath(), args.caseName());
+        // Errors of every rank are agreed on before anyone stops (failTogether)
+        FatalError.throwExceptions();
+        FatalIOError.throwExceptions();
+
         // Everything is read and validated before any meshing starts
         pmsh::meshSettings settings;
         dictionary decomposition;
-        std::vector<pmsh::fieldTemplate> fieldTemplates;
         std::unique_ptr<pmsh::Geometry> geometry;
         pmsh::failTogether(comm, [&]
         {
@@ -249,20 +211,22 @@ int main(int argc, char *argv[])
             const fileName dictFile = pmsh::foam::globalObjectPath(dictIO, runTime);
             if (!isFile(dictFile))
             {
-                FatalErrorIn("pmshFoam")
-                    << "The mesh dictionary " << dictFile << " does not exist." << nl
-                    << "Create system/pmshDict (see the tutorials), or name"
-                    << " another file with -dict <file>"
-                    << exit(FatalError);
+                throw pmsh::FatalError
+                (
+                    "The mesh dictionary \"" + dictFile + "\" does not exist.\n"
+                    "Create system/pmshDict (see the tutorials), or name"
+                    " another file with -dict <file>",
+                    "pmshFoam"
+                );
             }
             settings = pmsh::readMeshSettings(IOdictionary(dictIO), runTime.globalPath());
             if (comm.parallel())
             {
                 decomposition = pmsh::decompositionDict(args, comm.size());
-                fieldTemplates = pmsh::readFieldTemplates(runTime);
             }
             geometry = pmsh::Geometry::New(settings.geometryFile);
         });
+        #include "createFields.H"
         std::optional<pmsh::caseOutput> output;
         pmsh::failTogether(comm, [&]
         {
@@ -400,77 +364,26 @@ int main(int argc, char *argv[])
             "write",
             "Stage 7: writing "
           + std::string(runTime.writeFormat() == IOstream::BINARY ? "binary" : "ascii")
-          + " through the " + std::string(outputFileHandler) + " fileHandler"
+          + " through the " + std::string(control.outputFileHandler) + " fileHandler"
         );
-        pmsh::tetPolyMesh rankMesh;
-        pmsh::meshQualityReport quality;
-        pmsh::failTogether(comm, [&]
-        {
-            rankMesh = pmsh::tetsToPolyMesh
-            (
-                std::move(share.points), share.tets,
-                share.triangles, share.region,
-                coarse.patches, comm.parallel() ? comm.rank() : -1,
-                share.globalIds
-            );
-            share.tets = {};
-            share.triangles = {};
-            share.region = {};
-            rankMesh.zoneNames = coarse.zones;
-            rankMesh.cellZone = std::move(share.tetZone);
-            rankMesh.zonePairs = zonePairs;
-        });
-        if (cyclic)
-        {
-            // Collective: in its own failTogether
-            pmsh::failTogether(comm, [&]
-            {
-                pmsh::orderCyclicFaces(comm, rankMesh, share.pointIds, coarse);
-            });
-            share.pointIds = {};
-        }
-        const pmsh::meshSizes sizes = pmsh::meshSizesOf(rankMesh);
-        pmsh::procAddressing addressing;
-        if (comm.parallel())
-        {
-            addressing = pmsh::buildProcAddressing(comm, rankMesh, share.globalIds);
-        }
-        share = pmsh::rankTets();
-        pmsh::failTogether(comm, [&]
-        {
-            if (fileHandler().type() != outputFileHandler)
-            {
-                autoPtr<fileOperation> writer(fileOperation::New(outputFileHandler, false));
-                pmsh::foam::setFileHandler(writer);
-            }
-            if (comm.parallel())
-            {
-                pmsh::writeProcAddressing(output->time(), std::move(addressing));
-            }
-            const pmsh::foamRankMesh foamMesh(output->time(), std::move(rankMesh));
-            const fvMesh& mesh = foamMesh();
-            foamMesh.write();
-            if (comm.parallel())
-            {
-                #include "createFields.H"
-            }
-            // Last, once the fields are gone: the mesh geometry it needs is
-            // the peak of this stage
-            quality = pmsh::meshQualityOf(comm, mesh, volume);
-        });
+        const pmsh::writtenMesh written = pmsh::writeRankMesh
+        (
+            comm, share, coarse, zonePairs, volume, fieldTemplates,
+            control.outputFileHandler, *output
+        );
         output->commit();
         if (comm.parallel())
         {
             pmsh::writeDecomposeParDict(runTime, decomposition);
         }
-        pmsh::logWritten(comm, runTime.globalPath(), sizes);
-        pmsh::logMeshQuality(comm, quality);
+        pmsh::logWritten(comm, runTime.globalPath(), written.sizes);
+        pmsh::logMeshQuality(comm, written.quality);
         stages.end();
 
         pmsh::reportSummary
         (
             comm, runTime.globalPath(), settings, nCoarseCells, coarse.volumeMesher,
-            volume, nFineCells, quality, stages, estimate, repair
+            volume, nFineCells, written.quality, stages, estimate, repair
         );
     }
     catch (const pmsh::collectiveFailure& e)
