@@ -115,6 +115,15 @@ const Foam::token* single(const entry& e)
 }
 
 
+// Why these readers are not OpenFOAM's: dictionary::getCheckOrDefault
+// (v1912, v2506; Foundation 13 has no getCheck) fails with "Entry 'x' with
+// invalid input in dictionary <file>" at the dictionary's lines: no value,
+// no line of the entry, no valid values, which every message here gives
+// (tests/tutorials/testBadInput.py checks them). Foam::Enum wants its names
+// when compiled; the meshers' come from VolumeMesher::names(). And
+// fileName::expand takes <case> from $FOAM_CASE, which argList sets but
+// readMeshSettings is given as caseDir (and so are its unit tests).
+
 //- An optional number (an integer if integral) within [lo, hi].
 double bounded
 (
