@@ -115,16 +115,9 @@ const Foam::token* single(const entry& e)
 }
 
 
-// Why these readers are not OpenFOAM's: dictionary::getCheckOrDefault
-// (v1912, v2506; Foundation 13 has no getCheck) fails with "Entry 'x' with
-// invalid input in dictionary <file>" at the dictionary's lines: no value,
-// no line of the entry, no valid values, which every message here gives
-// (tests/tutorials/testBadInput.py checks them). Foam::Enum wants its names
-// when compiled; the meshers' come from VolumeMesher::names(). And
-// fileName::expand takes <case> from $FOAM_CASE, which argList sets but
-// readMeshSettings is given as caseDir (and so are its unit tests).
-
-//- An optional number (an integer if integral) within [lo, hi].
+//- An optional number (an integer if integral) within [lo, hi]. Not
+//  getCheckOrDefault (none in Foundation 13): its error names neither the
+//  value, the entry's line nor the valid values, as these messages do.
 double bounded
 (
     const dictionary& d,
@@ -159,7 +152,7 @@ double bounded
 }
 
 
-//- An optional word from a list of choices.
+//- An optional word from a list of choices (known at run time: no Foam::Enum).
 std::string choice
 (
     const dictionary& d,
@@ -179,7 +172,8 @@ std::string choice
 }
 
 
-//- <case>/x, $FOAM_CASE/x and relative names are relative to the case.
+//- <case>/x, $FOAM_CASE/x and relative names are relative to the case
+//  (fileName::expand would take it from $FOAM_CASE, not from caseDir).
 std::string casePath(const std::string& caseDir, const std::string& name)
 {
     std::string rest = name;
