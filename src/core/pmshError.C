@@ -1,4 +1,10 @@
 #include "pmshError.H"
+#include "foamShims.H"
+
+#include "error.H"
+#include "OStringStream.H"
+
+#include <cctype>
 
 pmsh::FatalError::FatalError(const std::string& message, const std::string& where)
 :
@@ -17,15 +23,73 @@ std::string pmsh::str(const point3& p, int precision)
 }
 
 
-pmsh::FatalError pmsh::FatalError::preformatted
-(
-    const std::string& message,
-    const std::string& report
-)
+pmsh::FatalError pmsh::FatalError::of(const Foam::error& e)
 {
-    FatalError e(message);
-    e.report_ = report;
-    return e;
+    // Foam::error::what() says only "std::exception": the message, and the
+    // file and line of an IOerror
+    std::string text = e.message();
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
+    {
+        text.pop_back();
+    }
+    // OpenFOAM's operator<< is chosen by the static type: an IOerror's adds
+    // the file and line
+    Foam::OStringStream os;
+    if (const auto* io = dynamic_cast<const Foam::IOerror*>(&e))
+    {
+        if (!io->ioFileName().empty())
+        {
+            text += "\n(" + io->ioFileName();
+            if (io->ioStartLineNumber() > 0)
+            {
+                text += " at line " + std::to_string(io->ioStartLineNumber());
+            }
+            text += ")";
+        }
+        os  << *io;
+    }
+    else
+    {
+        os  << e;
+    }
+    FatalError converted(text);
+    converted.report_ = "\n\n" + os.str() + "\nFOAM exiting\n";
+    return converted;
+}
+
+
+pmsh::FatalError pmsh::FatalError::of(const std::exception_ptr& failure)
+{
+    try
+    {
+        std::rethrow_exception(failure);
+    }
+    catch (const FatalError& e)
+    {
+        return e;
+    }
+    catch (const Foam::error& e)
+    {
+        return of(e);
+    }
+    catch (const std::exception& e)
+    {
+        return FatalError(e.what());
+    }
+}
+
+
+pmsh::foamErrorsThrow::foamErrorsThrow()
+:
+    error_(foam::throwExceptions(Foam::FatalError, true)),
+    ioError_(foam::throwExceptions(Foam::FatalIOError, true))
+{}
+
+
+pmsh::foamErrorsThrow::~foamErrorsThrow()
+{
+    foam::throwExceptions(Foam::FatalIOError, ioError_);
+    foam::throwExceptions(Foam::FatalError, error_);
 }
 
 

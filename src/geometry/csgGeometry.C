@@ -3,7 +3,6 @@
 \*---------------------------------------------------------------------------*/
 
 #include "csgGeometry.H"
-#include "Info.H"
 #include "netgenInterface.H"
 #include "pmshError.H"
 

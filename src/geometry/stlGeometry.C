@@ -6,10 +6,11 @@
 #include "stlGeometry.H"
 #include "netgenInterface.H"
 #include "pmshError.H"
-#include "Info.H"
+#include "streamManip.H"
 #include "matchByPoints.H"
 #include "retryLadder.H"
 #include "triangleGeometry.H"
+#include "boxTree.H"
 
 #include <algorithm>
 #include <chrono>
@@ -21,225 +22,7 @@
 #include <queue>
 #include <sstream>
 
-// * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
-
-namespace pmsh
-{
-namespace
-{
-
-//- Squared distance from p to the box [lo, hi] (0 inside).
-inline double boxDistSqr(const point3& p, const point3& lo, const point3& hi)
-{
-    double d2 = 0;
-    for (int k = 0; k < 3; ++k)
-    {
-        const double d =
-            p[k] < lo[k] ? lo[k] - p[k] : (p[k] > hi[k] ? p[k] - hi[k] : 0.0);
-        d2 += d*d;
-    }
-    return d2;
-}
-
-
-//- A bounding box tree (median split on the widest axis, leaves of up to
-//  four items) for nearest-item queries. Queries are deterministic: the
-//  traversal order is fixed and ties go to the first item found.
-class boxTree
-{
-public:
-
-    struct entry
-    {
-        label id;
-        point3 lo, hi, centre;
-    };
-
-private:
-
-    struct node
-    {
-        point3 lo, hi;
-        label begin, end;       // item range (leaves)
-        label left, right;      // children; -1 for a leaf
-    };
-
-    std::vector<node> nodes_;
-    std::vector<label> ids_;
-
-    static constexpr label leafSize = 4;
-
-    label build(std::vector<entry>& e, label b, label n)
-    {
-        node nd;
-        nd.lo = e[b].lo;
-        nd.hi = e[b].hi;
-        point3 clo = e[b].centre;
-        point3 chi = e[b].centre;
-        for (label i = b; i < b + n; ++i)
-        {
-            for (int k = 0; k < 3; ++k)
-            {
-                nd.lo[k] = std::min(nd.lo[k], e[i].lo[k]);
-                nd.hi[k] = std::max(nd.hi[k], e[i].hi[k]);
-                clo[k] = std::min(clo[k], e[i].centre[k]);
-                chi[k] = std::max(chi[k], e[i].centre[k]);
-            }
-        }
-        nd.begin = b;
-        nd.end = b + n;
-        nd.left = nd.right = -1;
-
-        const label index = label(nodes_.size());
-        nodes_.push_back(nd);
-
-        if (n > leafSize)
-        {
-            int axis = 0;
-            for (int k = 1; k < 3; ++k)
-            {
-                if (chi[k] - clo[k] > chi[axis] - clo[axis])
-                {
-                    axis = k;
-                }
-            }
-            const label half = n/2;
-            std::nth_element
-            (
-                e.begin() + b, e.begin() + b + half, e.begin() + b + n,
-                [axis](const entry& x, const entry& y)
-                {
-                    return x.centre[axis] != y.centre[axis]
-                        ? x.centre[axis] < y.centre[axis]
-                        : x.id < y.id;
-                }
-            );
-            const label left = build(e, b, half);
-            const label right = build(e, b + half, n - half);
-            nodes_[index].left = left;
-            nodes_[index].right = right;
-        }
-        return index;
-    }
-
-public:
-
-    boxTree() = default;
-
-    explicit boxTree(std::vector<entry> e)
-    {
-        if (e.empty())
-        {
-            return;
-        }
-        nodes_.reserve(2*e.size()/leafSize + 2);
-        build(e, 0, label(e.size()));
-        ids_.resize(e.size());
-        for (std::size_t i = 0; i < e.size(); ++i)
-        {
-            ids_[i] = e[i].id;
-        }
-    }
-
-    bool empty() const
-    {
-        return nodes_.empty();
-    }
-
-    //- Item nearest to p; eval(id, p, closest) returns the squared
-    //  distance from p to item id and sets closest. -1 if the tree is empty.
-    template<class Eval>
-    label nearest(const point3& p, const Eval& eval, point3& closest, double& d2) const
-    {
-        label best = -1;
-        d2 = std::numeric_limits<double>::infinity();
-        if (nodes_.empty())
-        {
-            return best;
-        }
-
-        // Depth is about log2(n/4) + 1, so 128 entries never overflow
-        std::pair<label, double> stack[128];
-        int top = 0;
-        stack[top++] = {0, boxDistSqr(p, nodes_[0].lo, nodes_[0].hi)};
-        while (top)
-        {
-            const auto cur = stack[--top];
-            if (cur.second >= d2)
-            {
-                continue;
-            }
-            const node& nd = nodes_[cur.first];
-            if (nd.left < 0)
-            {
-                for (label i = nd.begin; i < nd.end; ++i)
-                {
-                    point3 q;
-                    const double di = eval(ids_[i], p, q);
-                    if (di < d2)
-                    {
-                        d2 = di;
-                        best = ids_[i];
-                        closest = q;
-                    }
-                }
-            }
-            else
-            {
-                const double dl = boxDistSqr(p, nodes_[nd.left].lo, nodes_[nd.left].hi);
-                const double dr = boxDistSqr(p, nodes_[nd.right].lo, nodes_[nd.right].hi);
-                // Far child first: the near one is popped next
-                if (dl <= dr)
-                {
-                    stack[top++] = {nd.right, dr};
-                    stack[top++] = {nd.left, dl};
-                }
-                else
-                {
-                    stack[top++] = {nd.left, dl};
-                    stack[top++] = {nd.right, dr};
-                }
-            }
-        }
-        return best;
-    }
-
-    //- Call visit(id) for every item whose box is within sqrt(r2) of p.
-    template<class Visit>
-    void near(const point3& p, double r2, const Visit& visit) const
-    {
-        if (nodes_.empty())
-        {
-            return;
-        }
-        std::vector<label> stack{0};
-        while (!stack.empty())
-        {
-            const node& nd = nodes_[stack.back()];
-            stack.pop_back();
-            if (boxDistSqr(p, nd.lo, nd.hi) > r2)
-            {
-                continue;
-            }
-            if (nd.left < 0)
-            {
-                for (label i = nd.begin; i < nd.end; ++i)
-                {
-                    visit(ids_[i]);
-                }
-            }
-            else
-            {
-                stack.push_back(nd.right);
-                stack.push_back(nd.left);
-            }
-        }
-    }
-};
-
-} // End anonymous namespace
-} // End namespace pmsh
-
+using Foam::Info;
 
 // * * * * * * * * * * * * * * * * Private data * * * * * * * * * * * * * * //
 
@@ -781,10 +564,10 @@ void logCurvatureSizing
         nPoints += solid.nPoints;
         nAtFloor += solid.nAtFloor;
     }
-    Info()
+    Info
         << "    curvature sizing (curvatureRefinement "
-        << toString(curvatureRefinement) << ", minCellSize "
-        << toString(minCellSize) << "): " << nPoints
+        << toString(curvatureRefinement).c_str() << ", minCellSize "
+        << toString(minCellSize).c_str() << "): " << nPoints
         << " STL points below maxCellSize, " << nAtFloor
         << " held at minCellSize\n";
     for (std::size_t i = 0; i < sizing.solids.size(); ++i)
@@ -792,9 +575,9 @@ void logCurvatureSizing
         const auto& solid = sizing.solids[i];
         if (solid.nPoints)
         {
-            Info()
-                << "        " << solidNames[i] << ": " << solid.nPoints
-                << " points, smallest size " << toString(solid.smallest)
+            Info
+                << "        " << solidNames[i].c_str() << ": " << solid.nPoints
+                << " points, smallest size " << toString(solid.smallest).c_str()
                 << ", about " << label(std::lround(solid.faces))
                 << " boundary faces at these sizes, "
                 << label(std::lround(solid.uniformFaces))
@@ -948,9 +731,9 @@ ng::volumeMesh retriedStlMesh
             sizes.maxCellSize
         );
     const double ladderLimit = 2*attemptLimit;
-    Info()
-        << "    time limit: " << toString(attemptLimit) << " s an attempt, "
-        << toString(ladderLimit) << " s for all (coarseTimeLimit"
+    Info
+        << "    time limit: " << toString(attemptLimit).c_str() << " s an attempt, "
+        << toString(ladderLimit).c_str() << " s for all (coarseTimeLimit"
         << (sizes.coarseTimeLimit > 0 ? "" : ", from the surface's size")
         << ")\n";
     const auto start = std::chrono::steady_clock::now();
@@ -999,9 +782,9 @@ ng::volumeMesh retriedStlMesh
                 );
                 if (i > 0)
                 {
-                    Info()
+                    Info
                         << "    Netgen's STL mesh succeeded at attempt " << i + 1
-                        << " (" << attempt.change << ")\n";
+                        << " (" << attempt.change.c_str() << ")\n";
                 }
                 if (sizesTried.curvatureRefinement > 0)
                 {
@@ -1023,9 +806,9 @@ ng::volumeMesh retriedStlMesh
             {
                 if (i + 1 < attempts.size())
                 {
-                    Info()
-                        << "    Netgen's STL mesh failed (" << e.reason()
-                        << "); retrying with " << attempts[i + 1].change << '\n';
+                    Info
+                        << "    Netgen's STL mesh failed (" << e.reason().c_str()
+                        << "); retrying with " << attempts[i + 1].change.c_str() << '\n';
                 }
                 throw attemptFailed{e.reason()};
             }

@@ -115,7 +115,9 @@ const Foam::token* single(const entry& e)
 }
 
 
-//- An optional number (an integer if integral) within [lo, hi].
+//- An optional number (an integer if integral) within [lo, hi]. Not
+//  getCheckOrDefault (none in Foundation 13): its error names neither the
+//  value, the entry's line nor the valid values, as these messages do.
 double bounded
 (
     const dictionary& d,
@@ -150,7 +152,7 @@ double bounded
 }
 
 
-//- An optional word from a list of choices.
+//- An optional word from a list of choices (known at run time: no Foam::Enum).
 std::string choice
 (
     const dictionary& d,
@@ -170,7 +172,8 @@ std::string choice
 }
 
 
-//- <case>/x, $FOAM_CASE/x and relative names are relative to the case.
+//- <case>/x, $FOAM_CASE/x and relative names are relative to the case
+//  (fileName::expand would take it from $FOAM_CASE, not from caseDir).
 std::string casePath(const std::string& caseDir, const std::string& name)
 {
     std::string rest = name;

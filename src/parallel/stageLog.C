@@ -1,10 +1,14 @@
 #include "stageLog.H"
-#include "Info.H"
+#include "streamManip.H"
 
 #include <algorithm>
 #include <iomanip>
 #include <numeric>
 #include <ostream>
+
+using Foam::Info;
+using Foam::fixed;
+using Foam::setprecision;
 
 pmsh::minAvgMax pmsh::minAvgMaxOf(const std::vector<double>& perRank)
 {
@@ -30,7 +34,7 @@ void pmsh::stageLog::begin(const std::string& key, const std::string& title)
 {
     key_ = key;
     title_ = title;
-    Info() << title << '\n';
+    Info << title.c_str() << '\n';
     timer_.restart();
 }
 
@@ -67,20 +71,20 @@ void pmsh::stageLog::end()
     const std::vector<double> perRank = comm_.allGather(timer_.elapsed());
     const minAvgMax t = minAvgMaxOf(perRank);
     const double memory = minAvgMaxOf(comm_.allGather(double(peakMemoryBytes()))).max;
-    Info() << std::fixed << std::setprecision(2);
+    Info << fixed << setprecision(2);
     if (comm_.parallel())
     {
-        Info()
+        Info
             << "    time (s) min/avg/max: " << t.min << " / " << t.avg << " / " << t.max
-            << std::setprecision(1)
+            << setprecision(1)
             << ", peak memory (MiB) max: " << memory/1048576.0 << '\n';
     }
     else
     {
-        Info()
-            << "    time: " << t.max << " s" << std::setprecision(1)
+        Info
+            << "    time: " << t.max << " s" << setprecision(1)
             << ", peak memory: " << memory/1048576.0 << " MiB\n";
     }
-    Info() << std::defaultfloat << std::setprecision(6) << '\n';
+    Info << defaultfloat << setprecision(6) << '\n';
     times_.push_back({key_, title_, perRank, t.max, memory});
 }

@@ -46,7 +46,7 @@
 #include "memoryEstimate.H"
 #include "foamShims.H"
 
-#include "Info.H"
+#include "streamManip.H"
 #include "labelLimit.H"
 #include "OSspecific.H"
 #include "Pstream.H"
@@ -58,6 +58,8 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+
+using Foam::Info;
 
 // * * * * * * * * * * * * * * * * Local helpers  * * * * * * * * * * * * * //
 
@@ -422,13 +424,13 @@ pmsh::memoryEstimate pmsh::estimateAndCheckMemory
     );
     const double machineBytes = double(machineMemoryBytes());
 
-    Info()
-        << "    expected fine cells: " << count(e.fineCells) << " (largest rank "
-        << count(e.fineCellsPerRank) << "), peak memory per rank: "
-        << memorySizeName(e.bytesPerRank) << ", "
-        << memorySizeName(ranksOnMachine*e.bytesPerRank) << " for the "
-        << plural(ranksOnMachine, "rank") << " on the master's machine of "
-        << memorySizeName(machineBytes) << '\n';
+    Info
+        << "    expected fine cells: " << count(e.fineCells).c_str() << " (largest rank "
+        << count(e.fineCellsPerRank).c_str() << "), peak memory per rank: "
+        << memorySizeName(e.bytesPerRank).c_str() << ", "
+        << memorySizeName(ranksOnMachine*e.bytesPerRank).c_str() << " for the "
+        << plural(ranksOnMachine, "rank").c_str() << " on the master's machine of "
+        << memorySizeName(machineBytes).c_str() << '\n';
 
     // Labels are a hard limit of the build: no option skips this
     checkLabelEstimate(settings, coarseCells, weightedFineCells);
@@ -443,7 +445,7 @@ pmsh::memoryEstimate pmsh::estimateAndCheckMemory
     }
     else
     {
-        Info() << "    memory check skipped (-noMemoryCheck)\n";
+        Info << "    memory check skipped (-noMemoryCheck)\n";
     }
     return e;
 }
@@ -464,13 +466,13 @@ void pmsh::logEstimateAccuracy
         os << std::fixed << (expected > 0 ? measured/expected : 0);
         return os.str();
     };
-    Info()
+    Info
         << "    estimate after stage 1 (measured/expected): fine cells "
-        << ratio(fineCells, estimate.fineCells) << ", largest rank's cells "
-        << ratio(largestRankFineCells, estimate.fineCellsPerRank)
-        << ", peak memory per rank " << ratio(largestPeakBytes, estimate.bytesPerRank)
-        << " (" << memorySizeName(largestPeakBytes) << " of "
-        << memorySizeName(estimate.bytesPerRank) << ")\n";
+        << ratio(fineCells, estimate.fineCells).c_str() << ", largest rank's cells "
+        << ratio(largestRankFineCells, estimate.fineCellsPerRank).c_str()
+        << ", peak memory per rank " << ratio(largestPeakBytes, estimate.bytesPerRank).c_str()
+        << " (" << memorySizeName(largestPeakBytes).c_str() << " of "
+        << memorySizeName(estimate.bytesPerRank).c_str() << ")\n";
 }
 
 

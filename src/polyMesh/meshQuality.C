@@ -1,7 +1,7 @@
 #include "meshQuality.H"
 #include "checkMeshFaceMetrics.H"
 #include "foamShims.H"
-#include "Info.H"
+#include "streamManip.H"
 #include "stageLog.H"
 
 #include "syncTools.H"
@@ -11,6 +11,11 @@
 #include <cmath>
 #include <iomanip>
 #include <ostream>
+
+using Foam::Info;
+using Foam::fixed;
+using Foam::scientific;
+using Foam::setprecision;
 
 namespace
 {
@@ -260,23 +265,23 @@ pmsh::meshQualityReport pmsh::meshQualityOf
 void pmsh::logMeshQuality(const Communicator& comm, const meshQualityReport& quality)
 {
     const meshQuality& q = quality.overall;
-    Info()
-        << std::fixed << std::setprecision(1)
+    Info
+        << fixed << setprecision(1)
         << "    mesh quality (as checkMesh" << (comm.parallel() ? " -parallel" : "")
         << "):\n"
         << "        max non-orthogonality " << q.maxNonOrthogonality;
     if (comm.parallel())
     {
-        Info() << " (processor faces " << q.maxProcessorNonOrthogonality << ")";
+        Info << " (processor faces " << q.maxProcessorNonOrthogonality << ")";
     }
-    Info()
+    Info
         << ", average " << q.avgNonOrthogonality << " degrees, "
         << q.nSevereNonOrthogonal << " faces above 70\n"
-        << std::setprecision(3)
+        << setprecision(3)
         << "        max skewness " << q.maxSkewness
-        << std::scientific << std::setprecision(3)
+        << scientific << setprecision(3)
         << ", min volume " << q.minVolume << '\n'
-        << std::fixed << std::setprecision(1)
+        << fixed << setprecision(1)
         << "        tet dihedral angles min/max: " << q.minDihedral << " / "
         << q.maxDihedral << " degrees, max aspect ratio " << q.maxAspectRatio
         << '\n';
@@ -290,14 +295,14 @@ void pmsh::logMeshQuality(const Communicator& comm, const meshQualityReport& qua
         }
         const minAvgMax n = minAvgMaxOf(nonOrth);
         const minAvgMax s = minAvgMaxOf(skew);
-        Info()
+        Info
             << "        per rank max non-orthogonality min/avg/max: " << n.min
             << " / " << n.avg << " / " << n.max << '\n'
-            << std::setprecision(3)
+            << setprecision(3)
             << "        per rank max skewness min/avg/max: " << s.min << " / "
             << s.avg << " / " << s.max << '\n';
     }
-    Info() << std::defaultfloat << std::setprecision(6);
+    Info << defaultfloat << setprecision(6);
 }
 
 

@@ -1,5 +1,5 @@
 #include "childProcess.H"
-#include "Info.H"
+#include "streamManip.H"
 #include "pmshError.H"
 
 #include <atomic>
@@ -219,7 +219,12 @@ void waitLogging
                 << "    " << attempt << ": " << std::lround(elapsed) << " s so far, CPU "
                 << std::lround(cpu) << " s, " << std::lround(resident/(1024*1024))
                 << " MiB, step: " << lastStep;
-            PoutLine(line.str());
+            // Flushed once, prefix included: the lines of ranks that
+            // print at the same time do not cut into each other
+            const std::ios_base::fmtflags flags = std::cout.flags();
+            std::cout.unsetf(std::ios_base::unitbuf);
+            Foam::Pout<< line.str().c_str() << Foam::endl;
+            std::cout.flags(flags);
             next += every;
         }
     }

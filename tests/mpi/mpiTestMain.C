@@ -68,7 +68,6 @@ int main(int argc, char** argv)
     }
     const pmsh::Communicator comm;
     theWorld = &comm;
-    pmsh::setLogRank(comm.rank(), comm.parallel());
     // The stages' logs (std::cout) would bury GoogleTest's report, which
     // it prints with printf
     discardingBuffer discard;

@@ -1,0 +1,97 @@
+#include "writeRankMesh.H"
+#include "caseControl.H"
+#include "cyclicFaces.H"
+#include "failTogether.H"
+#include "foamMeshOutput.H"
+#include "procAddressing.H"
+#include "tetsToPolyMesh.H"
+
+namespace
+{
+
+using namespace pmsh;
+
+// The share's tets as a polyMesh (its arrays freed as they are used), the
+// cyclic faces in the order both sides of a cyclic patch agree on
+tetPolyMesh polyMeshOf
+(
+    const Communicator& comm,
+    rankTets& share,
+    const CoarseMesh& coarse,
+    const std::vector<std::array<label, 2>>& zonePairs
+)
+{
+    tetPolyMesh mesh;
+    failTogether(comm, [&]
+    {
+        mesh = tetsToPolyMesh
+        (
+            std::move(share.points), share.tets,
+            share.triangles, share.region,
+            coarse.patches, comm.parallel() ? comm.rank() : -1,
+            share.globalIds
+        );
+        share.tets = {};
+        share.triangles = {};
+        share.region = {};
+        mesh.zoneNames = coarse.zones;
+        mesh.cellZone = std::move(share.tetZone);
+        mesh.zonePairs = zonePairs;
+    });
+    if (!coarse.periodicPatches.empty())
+    {
+        // Collective: in its own failTogether
+        failTogether(comm, [&]
+        {
+            orderCyclicFaces(comm, mesh, share.pointIds, coarse);
+        });
+        share.pointIds = {};
+    }
+    return mesh;
+}
+
+} // End anonymous namespace
+
+
+pmsh::writtenMesh pmsh::writeRankMesh
+(
+    const Communicator& comm,
+    rankTets& share,
+    const CoarseMesh& coarse,
+    const std::vector<std::array<label, 2>>& zonePairs,
+    const partitionVolumeResult& volume,
+    const std::vector<fieldTemplate>& fieldTemplates,
+    const Foam::word& outputFileHandler,
+    const caseOutput& output
+)
+{
+    tetPolyMesh rankMesh = polyMeshOf(comm, share, coarse, zonePairs);
+    writtenMesh written;
+    written.sizes = meshSizesOf(rankMesh);
+    procAddressing addressing;
+    if (comm.parallel())
+    {
+        addressing = buildProcAddressing(comm, rankMesh, share.globalIds);
+    }
+    share = rankTets();
+
+    failTogether(comm, [&]
+    {
+        useFileHandler(outputFileHandler);
+        if (comm.parallel())
+        {
+            writeProcAddressing(output.time(), std::move(addressing));
+        }
+        const foamRankMesh foamMesh(output.time(), std::move(rankMesh));
+        const Foam::fvMesh& mesh = foamMesh();
+        foamMesh.write();
+        for (const fieldTemplate& field : fieldTemplates)
+        {
+            writeProcessorField(field, mesh);
+        }
+        // Last, once the fields are gone: the mesh geometry it needs is
+        // the peak of this stage
+        written.quality = meshQualityOf(comm, mesh, volume);
+    });
+    return written;
+}
