@@ -89,6 +89,280 @@ std::map<int, double> diffusionFlows
     return flow;
 }
 
+// Destinations: for each neighbour that gets cells, the tets nearest
+// their interface, layer by layer (breadth first from the interface)
+std::vector<int> tetDestinations
+(
+    const rankTets& mesh,
+    const tetFaceMatch& match,
+    const std::map<int, double>& flow,
+    int me
+)
+{
+    const label nTets = label(mesh.tets.size());
+    const faceId nTetFaces = faceId(4*mesh.tets.size());
+    std::vector<int> dest(nTets, me);
+    for (const auto& [s, f] : flow)
+    {
+        label wanted = label(std::floor(f + 0.5));
+        if (wanted <= 0) continue;
+        std::deque<label> front;
+        std::vector<bool> queued(nTets, false);
+        for (faceId id = 0; id < nTetFaces; ++id)
+        {
+            const faceId other = match.across[id];
+            if
+            (
+                other >= nTetFaces && other != noFace
+             && mesh.region[other - nTetFaces] == interfaceRegion(s)
+             && !queued[id/4]
+            )
+            {
+                queued[id/4] = true;
+                front.push_back(label(id/4));
+            }
+        }
+        while (!front.empty() && wanted > 0)
+        {
+            const label t = front.front();
+            front.pop_front();
+            if (dest[t] != me) continue;
+            dest[t] = s;
+            --wanted;
+            for (int fi = 0; fi < 4; ++fi)
+            {
+                const faceId other = match.across[4*t + fi];
+                if (other < nTetFaces && !queued[other/4])
+                {
+                    queued[other/4] = true;
+                    front.push_back(label(other/4));
+                }
+            }
+        }
+    }
+    return dest;
+}
+
+
+// Where the tets behind this rank's processor faces go, from their ranks,
+// by the faces' global keys
+std::map<globalFaceKey, int> destinationsAcross
+(
+    const Communicator& comm,
+    const rankTets& mesh,
+    const tetFaceMatch& match,
+    const std::vector<int>& dest
+)
+{
+    const faceId nTetFaces = faceId(4*mesh.tets.size());
+    std::vector<std::vector<faceDestination>> tell(comm.size());
+    for (faceId id = 0; id < nTetFaces; ++id)
+    {
+        const faceId other = match.across[id];
+        if (other >= nTetFaces && other != noFace && isInterfaceRegion(mesh.region[other - nTetFaces]))
+        {
+            const int s = int(interfaceNeighbour(mesh.region[other - nTetFaces]));
+            tell[s].push_back({globalKeyOf(mesh.triangles[other - nTetFaces], mesh.globalIds), dest[id/4]});
+        }
+    }
+    std::map<globalFaceKey, int> destAcross;
+    for (const auto& fromRank : comm.exchange(tell))
+    {
+        for (const faceDestination& fd : fromRank)
+        {
+            destAcross[fd.key] = fd.dest;
+        }
+    }
+    return destAcross;
+}
+
+
+// Every tet's faces as they will be at its destination
+class acrossAfterMove
+{
+    const rankTets& mesh_;
+    const tetFaceMatch& match_;
+    const std::vector<int>& dest_;
+    const std::map<globalFaceKey, int>& destAcross_;
+    const faceId nTetFaces_;
+
+public:
+
+    acrossAfterMove
+    (
+        const rankTets& mesh,
+        const tetFaceMatch& match,
+        const std::vector<int>& dest,
+        const std::map<globalFaceKey, int>& destAcross
+    )
+    :
+        mesh_(mesh),
+        match_(match),
+        dest_(dest),
+        destAcross_(destAcross),
+        nTetFaces_(faceId(4*mesh.tets.size()))
+    {}
+
+    //- What lies across face fi of tet t once it is at its destination
+    label operator()(label t, int fi) const
+    {
+        const faceId other = match_.across[4*t + fi];
+        int d;
+        if (other < nTetFaces_)
+        {
+            d = dest_[other/4];
+        }
+        else
+        {
+            const label r = mesh_.region[other - nTetFaces_];
+            if (!isInterfaceRegion(r))
+            {
+                return r;   // a physical patch
+            }
+            d = destAcross_.at(globalKeyOf(mesh_.triangles[other - nTetFaces_], mesh_.globalIds));
+        }
+        return d == dest_[t] ? internalFace : interfaceRegion(d);
+    }
+};
+
+
+// The tets leaving this rank, packed per destination; the staying tets
+// and what will lie across their faces
+std::vector<std::vector<movedTet>> packMovedTets
+(
+    const rankTets& mesh,
+    const std::vector<int>& dest,
+    const acrossAfterMove& acrossOf,
+    int me,
+    int nRanks,
+    std::vector<label>& staying,
+    std::vector<std::array<label, 4>>& stayingAcross
+)
+{
+    std::vector<std::vector<movedTet>> send(nRanks);
+    for (label t = 0; t < label(mesh.tets.size()); ++t)
+    {
+        if (dest[t] == me)
+        {
+            staying.push_back(t);
+            continue;
+        }
+        movedTet m;
+        for (int k = 0; k < 4; ++k)
+        {
+            const label p = mesh.tets[t][k];
+            m.globalIds[k] = mesh.globalIds[p];
+            m.points[k] = mesh.points[p];
+            m.pointIds[k] = mesh.pointIds.empty() ? barycentricId() : mesh.pointIds[p];
+            m.across[k] = acrossOf(t, k);
+        }
+        m.zone = mesh.tetZone.empty() ? 0 : mesh.tetZone[t];
+        send[dest[t]].push_back(m);
+    }
+    stayingAcross.resize(staying.size());
+    for (std::size_t i = 0; i < staying.size(); ++i)
+    {
+        for (int k = 0; k < 4; ++k)
+        {
+            stayingAcross[i][k] = acrossOf(staying[i], k);
+        }
+    }
+    return send;
+}
+
+
+// The new mesh of a rank, tet by tet: points each once, by global number,
+// boundary faces where something other than a local tet lies across
+class rankTetsBuilder
+{
+    const bool zoned_;
+    std::unordered_map<label, label> pointOf_;
+
+public:
+
+    rankTets out;
+
+    explicit rankTetsBuilder(bool zoned)
+    :
+        zoned_(zoned)
+    {}
+
+    label addPoint(label g, const point3& x, const barycentricId& id)
+    {
+        const auto inserted = pointOf_.emplace(g, label(out.points.size()));
+        if (inserted.second)
+        {
+            out.points.push_back(x);
+            out.globalIds.push_back(g);
+            out.pointIds.push_back(id);
+        }
+        return inserted.first->second;
+    }
+
+    void addTet(const tetVerts& t, const std::array<label, 4>& across, label zone)
+    {
+        out.tets.push_back(t);
+        if (zoned_) out.tetZone.push_back(zone);
+        const auto faces = outwardTetFaces(t);
+        for (int k = 0; k < 4; ++k)
+        {
+            if (across[k] != internalFace)
+            {
+                out.triangles.push_back(faces[k]);
+                out.region.push_back(across[k]);
+            }
+        }
+    }
+};
+
+
+// The new mesh: the staying tets' points in their order, then the points
+// that came with others. mesh is freed before the received tets are added
+// (the peak memory of the move); returns the number received.
+std::int64_t assembleMovedMesh
+(
+    rankTets& mesh,
+    const std::vector<label>& staying,
+    const std::vector<std::array<label, 4>>& stayingAcross,
+    std::vector<std::vector<movedTet>>& received
+)
+{
+    const bool zoned = !mesh.tetZone.empty();
+    rankTetsBuilder builder(zoned);
+    for (std::size_t i = 0; i < staying.size(); ++i)
+    {
+        const tetVerts& old = mesh.tets[staying[i]];
+        tetVerts t;
+        for (int k = 0; k < 4; ++k)
+        {
+            t[k] = builder.addPoint
+            (
+                mesh.globalIds[old[k]], mesh.points[old[k]],
+                mesh.pointIds.empty() ? barycentricId() : mesh.pointIds[old[k]]
+            );
+        }
+        builder.addTet(t, stayingAcross[i], zoned ? mesh.tetZone[staying[i]] : 0);
+    }
+    mesh = rankTets();
+    std::int64_t nReceived = 0;
+    for (auto& fromRank : received)
+    {
+        for (const movedTet& m : fromRank)
+        {
+            tetVerts t;
+            for (int k = 0; k < 4; ++k)
+            {
+                t[k] = builder.addPoint(m.globalIds[k], m.points[k], m.pointIds[k]);
+            }
+            builder.addTet(t, m.across, m.zone);
+            ++nReceived;
+        }
+        fromRank = {};
+    }
+    mesh = std::move(builder.out);
+    return nReceived;
+}
+
 } // End anonymous namespace
 
 
@@ -132,184 +406,23 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
             "balanceFineCells"
         );
     }
-    const faceId nTetFaces = faceId(4*mesh.tets.size());
 
-    // Destinations: for each neighbour that gets cells, the tets nearest
-    // their interface, layer by layer
-    std::vector<int> dest(nTets, me);
-    for (const auto& [s, f] : flow)
-    {
-        label wanted = label(std::floor(f + 0.5));
-        if (wanted <= 0) continue;
-        std::deque<label> front;
-        std::vector<bool> queued(nTets, false);
-        for (faceId id = 0; id < nTetFaces; ++id)
-        {
-            const faceId other = match.across[id];
-            if
-            (
-                other >= nTetFaces && other != noFace
-             && mesh.region[other - nTetFaces] == interfaceRegion(s)
-             && !queued[id/4]
-            )
-            {
-                queued[id/4] = true;
-                front.push_back(label(id/4));
-            }
-        }
-        while (!front.empty() && wanted > 0)
-        {
-            const label t = front.front();
-            front.pop_front();
-            if (dest[t] != me) continue;
-            dest[t] = s;
-            --wanted;
-            for (int fi = 0; fi < 4; ++fi)
-            {
-                const faceId other = match.across[4*t + fi];
-                if (other < nTetFaces && !queued[other/4])
-                {
-                    queued[other/4] = true;
-                    front.push_back(label(other/4));
-                }
-            }
-        }
-    }
+    const std::vector<int> dest = tetDestinations(mesh, match, flow, me);
+    const std::map<globalFaceKey, int> destAcross =
+        destinationsAcross(comm, mesh, match, dest);
 
-    // Where the tets behind this rank's processor faces go, from their ranks
-    std::vector<std::vector<faceDestination>> tell(comm.size());
-    for (faceId id = 0; id < nTetFaces; ++id)
-    {
-        const faceId other = match.across[id];
-        if (other >= nTetFaces && other != noFace && isInterfaceRegion(mesh.region[other - nTetFaces]))
-        {
-            const int s = int(interfaceNeighbour(mesh.region[other - nTetFaces]));
-            tell[s].push_back({globalKeyOf(mesh.triangles[other - nTetFaces], mesh.globalIds), dest[id/4]});
-        }
-    }
-    std::map<globalFaceKey, int> destAcross;
-    for (const auto& fromRank : comm.exchange(tell))
-    {
-        for (const faceDestination& fd : fromRank)
-        {
-            destAcross[fd.key] = fd.dest;
-        }
-    }
-
-    // Every tet's faces as they will be at its destination
-    auto acrossOf = [&](label t, int fi) -> label
-    {
-        const faceId other = match.across[4*t + fi];
-        int d;
-        if (other < nTetFaces)
-        {
-            d = dest[other/4];
-        }
-        else
-        {
-            const label r = mesh.region[other - nTetFaces];
-            if (!isInterfaceRegion(r))
-            {
-                return r;   // a physical patch
-            }
-            d = destAcross.at(globalKeyOf(mesh.triangles[other - nTetFaces], mesh.globalIds));
-        }
-        return d == dest[t] ? internalFace : interfaceRegion(d);
-    };
-
-    std::vector<std::vector<movedTet>> send(comm.size());
     std::vector<label> staying;
-    for (label t = 0; t < nTets; ++t)
-    {
-        if (dest[t] == me)
-        {
-            staying.push_back(t);
-            continue;
-        }
-        movedTet m;
-        for (int k = 0; k < 4; ++k)
-        {
-            const label p = mesh.tets[t][k];
-            m.globalIds[k] = mesh.globalIds[p];
-            m.points[k] = mesh.points[p];
-            m.pointIds[k] = mesh.pointIds.empty() ? barycentricId() : mesh.pointIds[p];
-            m.across[k] = acrossOf(t, k);
-        }
-        m.zone = mesh.tetZone.empty() ? 0 : mesh.tetZone[t];
-        send[dest[t]].push_back(m);
-    }
-    std::vector<std::array<label, 4>> stayingAcross(staying.size());
-    for (std::size_t i = 0; i < staying.size(); ++i)
-    {
-        for (int k = 0; k < 4; ++k)
-        {
-            stayingAcross[i][k] = acrossOf(staying[i], k);
-        }
-    }
+    std::vector<std::array<label, 4>> stayingAcross;
+    std::vector<std::vector<movedTet>> send = packMovedTets
+    (
+        mesh, dest, acrossAfterMove(mesh, match, dest, destAcross), me,
+        comm.size(), staying, stayingAcross
+    );
     std::vector<std::vector<movedTet>> received = comm.exchange(send);
     send = {};
 
-    // The new mesh: the staying tets' points in their order, then the
-    // points that came with others (each once, by global number)
-    rankTets out;
-    std::unordered_map<label, label> pointOf;
-    auto addPoint = [&](label g, const point3& x, const barycentricId& id)
-    {
-        const auto inserted = pointOf.emplace(g, label(out.points.size()));
-        if (inserted.second)
-        {
-            out.points.push_back(x);
-            out.globalIds.push_back(g);
-            out.pointIds.push_back(id);
-        }
-        return inserted.first->second;
-    };
-    const bool zoned = !mesh.tetZone.empty();
-    auto addTet = [&](const tetVerts& t, const std::array<label, 4>& across, label zone)
-    {
-        out.tets.push_back(t);
-        if (zoned) out.tetZone.push_back(zone);
-        const auto faces = outwardTetFaces(t);
-        for (int k = 0; k < 4; ++k)
-        {
-            if (across[k] != internalFace)
-            {
-                out.triangles.push_back(faces[k]);
-                out.region.push_back(across[k]);
-            }
-        }
-    };
-    for (std::size_t i = 0; i < staying.size(); ++i)
-    {
-        const tetVerts& old = mesh.tets[staying[i]];
-        tetVerts t;
-        for (int k = 0; k < 4; ++k)
-        {
-            t[k] = addPoint
-            (
-                mesh.globalIds[old[k]], mesh.points[old[k]],
-                mesh.pointIds.empty() ? barycentricId() : mesh.pointIds[old[k]]
-            );
-        }
-        addTet(t, stayingAcross[i], zoned ? mesh.tetZone[staying[i]] : 0);
-    }
-    mesh = rankTets();
-    std::int64_t nReceived = 0;
-    for (auto& fromRank : received)
-    {
-        for (const movedTet& m : fromRank)
-        {
-            tetVerts t;
-            for (int k = 0; k < 4; ++k)
-            {
-                t[k] = addPoint(m.globalIds[k], m.points[k], m.pointIds[k]);
-            }
-            addTet(t, m.across, m.zone);
-            ++nReceived;
-        }
-        fromRank = {};
-    }
-    mesh = std::move(out);
+    const std::int64_t nReceived =
+        assembleMovedMesh(mesh, staying, stayingAcross, received);
 
     stats.moved = comm.sum(nReceived);
     const std::vector<double> after = comm.allGather(double(mesh.tets.size()));
