@@ -63,7 +63,7 @@ Usage
 #include "IFstream.H"
 
 #include "caseOutput.H"
-#include "coarseMesh.H"
+#include "coarseMeshGeneration.H"
 #include "cyclicFaces.H"
 #include "Communicator.H"
 #include "failTogether.H"
@@ -455,7 +455,7 @@ int main(int argc, char *argv[])
             }
             // Last, once the fields are gone: the mesh geometry it needs is
             // the peak of this stage
-            quality = pmsh::meshQualityOf(comm, mesh, volume);
+            quality = pmsh::meshQualityOf(comm, mesh, {volume.minDihedral, volume.maxDihedral, volume.maxAspectRatio});
         });
         output->commit();
         if (comm.parallel())
