@@ -400,6 +400,15 @@ public:
 } // End anonymous namespace
 
 
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * //
+
+namespace pmsh
+{
+    defineTypeNameAndDebug(hxtVolumeMesher, 0);
+    addToRunTimeSelectionTable(VolumeMesher, hxtVolumeMesher, word);
+}
+
+
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
 pmsh::TetMesh pmsh::hxtVolumeMesher::generate
