@@ -59,6 +59,7 @@ public:
 
 } // End anonymous namespace
 
+
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * //
 
 namespace pmsh
