@@ -62,7 +62,7 @@ Usage
 #include "caseControl.H"
 #include "caseInputs.H"
 #include "caseOutput.H"
-#include "coarseMesh.H"
+#include "coarseMeshGeneration.H"
 #include "Communicator.H"
 #include "failTogether.H"
 #include "fieldTemplates.H"

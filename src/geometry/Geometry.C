@@ -1,15 +1,23 @@
 /*---------------------------------------------------------------------------*\
-  pmshFoam: Geometry::New, dispatch on the file extension.
+  pmshFoam: Geometry::New, selection by the file extension (OpenFOAM's
+  run-time selection table, which each geometry type adds itself to).
 \*---------------------------------------------------------------------------*/
 
 #include "Geometry.H"
-#include "csgGeometry.H"
-#include "stlGeometry.H"
 #include "pmshError.H"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * //
+
+namespace pmsh
+{
+    defineTypeNameAndDebug(Geometry, 0);
+    defineRunTimeSelectionTable(Geometry, extension);
+}
+
 
 // * * * * * * * * * * * * * * * * Selectors  * * * * * * * * * * * * * * * //
 
@@ -29,24 +37,22 @@ std::unique_ptr<pmsh::Geometry> pmsh::Geometry::New(const std::string& fileName)
         [](unsigned char c) { return char(std::tolower(c)); }
     );
 
-    if (ext == "geo")
+    const word key(ext, false);
+    if (!extensionConstructorTablePtr_ || !extensionConstructorTablePtr_->found(key))
     {
-        return std::unique_ptr<Geometry>(new csgGeometry(fileName));
+        msg m;
+        m   << "Unknown geometry file type \"" << fileName << "\""
+            << (ext.empty() ? " (no extension)" : "") << ".\nValid extensions:";
+        if (extensionConstructorTablePtr_)
+        {
+            for (const word& valid : extensionConstructorTablePtr_->sortedToc())
+            {
+                m   << "\n    ." << valid;
+            }
+        }
+        throw FatalError(m, "pmsh::Geometry::New");
     }
-    if (ext == "stl")
-    {
-        return std::unique_ptr<Geometry>(new stlGeometry(fileName));
-    }
-
-    throw FatalError
-    (
-        msg()
-            << "Unknown geometry file type \"" << fileName << "\""
-            << (ext.empty() ? " (no extension)" : "") << ".\nValid extensions:"
-            << "\n    .geo    Netgen CSG (algebraic3d)"
-            << "\n    .stl    STL, ascii or binary (case-insensitive)",
-        "pmsh::Geometry::New"
-    );
+    return (*extensionConstructorTablePtr_)[key](fileName);
 }
 
 

@@ -246,6 +246,15 @@ pmsh::vector3 translationOf
 } // End anonymous namespace
 
 
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * //
+
+namespace pmsh
+{
+    // Netgen CSG files (algebraic3d)
+    addNamedToRunTimeSelectionTable(Geometry, csgGeometry, extension, geo);
+}
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 pmsh::csgGeometry::csgGeometry(const std::string& fileName)

@@ -92,6 +92,13 @@ struct pmsh::stlGeometry::impl
 };
 
 
+// STL files, ascii or binary
+namespace pmsh
+{
+    addNamedToRunTimeSelectionTable(Geometry, stlGeometry, extension, stl);
+}
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
 pmsh::stlGeometry::stlGeometry(const std::string& fileName)

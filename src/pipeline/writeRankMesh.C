@@ -91,7 +91,10 @@ pmsh::writtenMesh pmsh::writeRankMesh
         }
         // Last, once the fields are gone: the mesh geometry it needs is
         // the peak of this stage
-        written.quality = meshQualityOf(comm, mesh, volume);
+        written.quality = meshQualityOf
+        (
+            comm, mesh, {volume.minDihedral, volume.maxDihedral, volume.maxAspectRatio}
+        );
     });
     return written;
 }

@@ -134,7 +134,7 @@ pmsh::meshQualityReport pmsh::meshQualityOf
 (
     const Communicator& comm,
     const Foam::fvMesh& mesh,
-    const partitionVolumeResult& volume
+    const tetShapeFigures& volume
 )
 {
     using namespace Foam;

@@ -1,17 +1,26 @@
 /*---------------------------------------------------------------------------*\
-  pmshFoam: volume mesher selection and the check of its contract.
+  pmshFoam: volume mesher selection (OpenFOAM's run-time selection table,
+  which each backend adds itself to) and the check of its contract.
 \*---------------------------------------------------------------------------*/
 
 #include "VolumeMesher.H"
 #include "tetShape.H"
 #include "surfaceTopology.H"
-#include "netgenVolumeMesher.H"
-#include "hxtVolumeMesher.H"
 #include "pmshError.H"
 #include "tetFaceMatching.H"
 #include "childProcess.H"
 
+#include <algorithm>
 #include <cstring>
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * //
+
+namespace pmsh
+{
+    defineTypeNameAndDebug(VolumeMesher, 0);
+    defineRunTimeSelectionTable(VolumeMesher, word);
+}
+
 
 // * * * * * * * * * * * * * * * Local functions * * * * * * * * * * * * * //
 
@@ -242,28 +251,37 @@ void verifyVolumeMesh
 
 std::vector<std::string> pmsh::VolumeMesher::names()
 {
-    return {"netgen", "hxt"};
+    std::vector<std::string> result;
+    if (wordConstructorTablePtr_)
+    {
+        for (const word& name : wordConstructorTablePtr_->sortedToc())
+        {
+            result.push_back(name);
+        }
+    }
+    std::stable_partition
+    (
+        result.begin(), result.end(),
+        [](const std::string& name) { return name == preferred; }
+    );
+    return result;
 }
 
 
 std::unique_ptr<pmsh::VolumeMesher> pmsh::VolumeMesher::New(const std::string& name)
 {
-    if (name == "netgen")
+    const word key(name, false);
+    if (!wordConstructorTablePtr_ || !wordConstructorTablePtr_->found(key))
     {
-        return std::unique_ptr<VolumeMesher>(new netgenVolumeMesher());
+        msg m;
+        m   << "Unknown volumeMesher \"" << name << "\".\nValid volume meshers:";
+        for (const std::string& n : names())
+        {
+            m   << "\n    " << n;
+        }
+        throw FatalError(m, "pmsh::VolumeMesher::New");
     }
-    if (name == "hxt")
-    {
-        return std::unique_ptr<VolumeMesher>(new hxtVolumeMesher());
-    }
-
-    msg m;
-    m   << "Unknown volumeMesher \"" << name << "\".\nValid volume meshers:";
-    for (const std::string& n : names())
-    {
-        m   << "\n    " << n;
-    }
-    throw FatalError(m, "pmsh::VolumeMesher::New");
+    return (*wordConstructorTablePtr_)[key]();
 }
 
 

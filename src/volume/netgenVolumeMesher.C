@@ -59,6 +59,16 @@ public:
 
 } // End anonymous namespace
 
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * //
+
+namespace pmsh
+{
+    defineTypeNameAndDebug(netgenVolumeMesher, 0);
+    addToRunTimeSelectionTable(VolumeMesher, netgenVolumeMesher, word);
+}
+
+
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
 
 pmsh::TetMesh pmsh::netgenVolumeMesher::generate

@@ -3,7 +3,7 @@
 
 #include "testPaths.H"
 #include "surfaceTopology.H"
-#include "Geometry.H"
+#include "coarseMeshGeneration.H"
 #include "csgGeometry.H"
 #include "stlGeometry.H"
 #include "stlReader.H"

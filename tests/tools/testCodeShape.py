@@ -1,0 +1,75 @@
+"""tools/codeShape on small trees: it must fail on each kind of offender
+and pass on a tree without any."""
+
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+TOOL = os.path.join(os.environ.get("PMSH_PROJECT_DIR",
+                                   os.path.join(os.path.dirname(__file__), "..", "..")),
+                    "tools", "codeShape")
+
+
+def function(name, bodyLines):
+    return (f"int {name}()\n{{\n"
+            + "".join(f"    int a{i} = {i};\n" for i in range(bodyLines))
+            + "    return 0;\n}\n")
+
+
+class codeShape(unittest.TestCase):
+
+    def tree(self, files):
+        root = tempfile.mkdtemp()
+        for path, text in files.items():
+            full = os.path.join(root, path)
+            os.makedirs(os.path.dirname(full), exist_ok=True)
+            with open(full, "w") as f:
+                f.write(text)
+        return root
+
+    def run_tool(self, files):
+        result = subprocess.run([sys.executable, TOOL, self.tree(files)],
+                                capture_output=True, text=True)
+        return result.returncode, result.stdout
+
+    def test_passesWithoutOffenders(self):
+        code, out = self.run_tool({
+            "src/core/a.H": '#include "b.H"\n',
+            "src/core/b.H": "namespace pmsh\n{\n" + function("f", 100) + "}\n",
+            "src/other/c.C": '#include "a.H"\n',
+        })
+        self.assertEqual(code, 0, out)
+
+    def test_longFileIsAnError(self):
+        code, out = self.run_tool({"src/core/long.C": "// line\n" * 801})
+        self.assertEqual(code, 1, out)
+        self.assertIn("src/core/long.C: 801 lines (limit 800)", out)
+
+    def test_longFunctionIsAnErrorEvenFirstInANamespace(self):
+        code, out = self.run_tool({
+            "src/core/f.C": "namespace pmsh\n{\n" + function("longOne", 149) + "}\n"})
+        self.assertEqual(code, 1, out)
+        self.assertIn("function longOne: 152 lines (limit 150)", out)
+
+    def test_folderCycleIsAnError(self):
+        code, out = self.run_tool({
+            "src/core/a.H": '#include "b.H"\n',
+            "src/other/b.H": "",
+            "src/other/b.C": '#include "b.H"\n#include "a.H"\n',
+        })
+        self.assertEqual(code, 1, out)
+        self.assertIn("include cycle between folders src/core, src/other", out)
+
+    def test_fileCycleInOneFolderIsReported(self):
+        code, out = self.run_tool({
+            "src/core/a.H": '#include "b.H"\n',
+            "src/core/b.H": '#include "a.H"\n',
+        })
+        self.assertEqual(code, 0, out)
+        self.assertIn("include cycle between files src/core/a, src/core/b", out)
+
+
+if __name__ == "__main__":
+    unittest.main()
