@@ -239,24 +239,16 @@ std::vector<pmsh::faceNeighbours> pmsh::coarseFaceNeighbours(const CoarseMesh& c
     {
         boundary[b] = coarse.boundary[b].v;
     }
-    const tetFaceMatch match = matchTetFaces(coarse.nPoints(), coarse.tets, boundary);
-    if (!match.fits())
-    {
-        throw FatalError
-        (
-            msg() << "The coarse mesh and its boundary do not fit together:"
-                << match.problems,
-            "coarseFaceNeighbours"
-        );
-    }
+    const tetFaceMatch match = fittingTetFaces
+    (
+        coarse.nPoints(), coarse.tets, boundary,
+        "The coarse mesh and its boundary do not fit together", "coarseFaceNeighbours"
+    );
 
-    const faceId nTetFaces = faceId(4*coarse.tets.size());
     std::vector<faceNeighbours> neighbours(coarse.nCells());
-    for (faceId id = 0; id < nTetFaces; ++id)
+    for (faceId id = 0; id < match.nTetFaces; ++id)
     {
-        const faceId other = match.across[id];
-        neighbours[id/4][id % 4] =
-            other < nTetFaces ? label(other/4) : -label(other - nTetFaces + 1);
+        neighbours[id/4][id % 4] = match.acrossOf(id);
     }
     return neighbours;
 }

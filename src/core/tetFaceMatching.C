@@ -61,6 +61,7 @@ pmsh::tetFaceMatch pmsh::matchTetFaces
 
     tetFaceMatch match;
     match.across.assign(nTetFaces, noFace);
+    match.nTetFaces = nTetFaces;
     problemCount open, notTetFace, internalInSurface, nonManifold, wrongSide, overlapping;
 
     forEachSamePointsGroup
@@ -142,6 +143,24 @@ pmsh::tetFaceMatch pmsh::matchTetFaces
     report(os, overlapping, "faces are shared by two tets on the same side"
         " (overlapping tets)");
     match.problems = os.str();
+    return match;
+}
+
+
+pmsh::tetFaceMatch pmsh::fittingTetFaces
+(
+    std::size_t nPoints,
+    const std::vector<tetVerts>& tets,
+    const std::vector<triVerts>& boundaryTriangles,
+    const std::string& mismatch,
+    const std::string& function
+)
+{
+    tetFaceMatch match = matchTetFaces(nPoints, tets, boundaryTriangles);
+    if (!match.fits())
+    {
+        throw FatalError(msg() << mismatch << ':' << match.problems, function);
+    }
     return match;
 }
 

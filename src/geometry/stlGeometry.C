@@ -8,6 +8,7 @@
 #include "pmshError.H"
 #include "Info.H"
 #include "matchByPoints.H"
+#include "retryLadder.H"
 #include "triangleGeometry.H"
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <optional>
 #include <queue>
 #include <sstream>
 
@@ -600,10 +602,9 @@ std::string toString(double x)
 }
 
 
-//- One try of Netgen's STL mesher: what it changes, and its sizes.
-struct meshAttempt
+//- The sizes of one try of Netgen's STL mesher.
+struct stlMeshSizes
 {
-    std::string change;
     double maxh;
     double curvatureRefinement;
 };
@@ -614,9 +615,9 @@ struct meshAttempt
 //  overlapping"): curvatureRefinement 10 or maxCellSize 0.1 cure it;
 //  Netgen's close-edge restriction 5x stronger with its edge-angle
 //  restriction does not, and makes curvatureRefinement 10 fail too.
-std::vector<meshAttempt> meshAttempts(double maxh, double curvatureRefinement)
+std::vector<ladderAttempt<stlMeshSizes>> meshAttempts(double maxh, double curvatureRefinement)
 {
-    std::vector<meshAttempt> attempts{{"", maxh, curvatureRefinement}};
+    std::vector<ladderAttempt<stlMeshSizes>> attempts{{{maxh, curvatureRefinement}, ""}};
 
     // Smaller sizes on curved faces: a chord of a curved wall sags by
     // h^2/(8 radius) = radius/(8 curvatureRefinement^2), and crosses the
@@ -628,7 +629,7 @@ std::vector<meshAttempt> meshAttempts(double maxh, double curvatureRefinement)
         curved = std::max(least, 3*curved);
         attempts.push_back
         (
-            {"curvatureRefinement " + toString(curved), maxh, curved}
+            {{maxh, curved}, "curvatureRefinement " + toString(curved)}
         );
     }
 
@@ -637,10 +638,9 @@ std::vector<meshAttempt> meshAttempts(double maxh, double curvatureRefinement)
     attempts.push_back
     (
         {
+            {maxh/2, curved},
             "maxCellSize " + toString(maxh/2) + " and curvatureRefinement "
-          + toString(curved),
-            maxh/2,
-            curved
+          + toString(curved)
         }
     );
     return attempts;
@@ -866,7 +866,7 @@ ng::volumeMesh retriedStlMesh
 {
     const std::string what = "STL file \"" + fileName + "\"";
     const stlSurface& surface = geometry.surface();
-    const std::vector<meshAttempt> attempts =
+    const std::vector<ladderAttempt<stlMeshSizes>> attempts =
         meshAttempts(sizes.maxCellSize, sizes.curvatureRefinement);
 
     // A surface Netgen cannot mesh well can keep it busy for tens of
@@ -895,78 +895,88 @@ ng::volumeMesh retriedStlMesh
     // Netgen's STL mesher fails on some valid surfaces where its triangles
     // are too large for the geometry, e.g. "boundary mesh is overlapping"
     // on a thin curved wall: each retry asks for smaller ones
-    std::vector<std::string> reasons;
-    bool timedOut = false;
-    for (std::size_t i = 0; i < attempts.size(); ++i)
+    double remaining = ladderLimit;
+    const auto withinLadderLimit = [&](std::size_t)
     {
-        const double remaining = ladderLimit - std::chrono::duration<double>
+        remaining = ladderLimit - std::chrono::duration<double>
         (
             std::chrono::steady_clock::now() - start
         ).count();
-        if (remaining <= 0)
+        return remaining > 0;
+    };
+    ladderFailures failed;
+    std::optional<ng::volumeMesh> meshed = climbLadder
+    (
+        attempts,
+        [&](const ladderAttempt<stlMeshSizes>& attempt, std::size_t i)
         {
-            break;
-        }
+            const stlMeshSizes& sizesTried = attempt.parameters;
 
-        // Curvature sizes are pmshFoam's, not Netgen's (resthsurfcurvfac):
-        // Netgen's have no floor and follow no grading
-        const stlGeometry::curvatureSizing curvature = geometry.curvatureSizes
-        (
-            attempts[i].curvatureRefinement, sizes.minCellSize,
-            attempts[i].maxh, sizes.grading
-        );
-        ng::meshParameters parameters = configured;
-        parameters.maxh = attempts[i].maxh;
-        parameters.timeLimit = std::min(attemptLimit, remaining);
-        parameters.sizePoints.insert
-        (
-            parameters.sizePoints.end(),
-            curvature.points.begin(), curvature.points.end()
-        );
-        try
-        {
-            ng::volumeMesh m = ng::stlVolumeMesh
+            // Curvature sizes are pmshFoam's, not Netgen's (resthsurfcurvfac):
+            // Netgen's have no floor and follow no grading
+            const stlGeometry::curvatureSizing curvature = geometry.curvatureSizes
             (
-                surface.points, surface.triangles, geometry.featureEdges(),
-                parameters, what
+                sizesTried.curvatureRefinement, sizes.minCellSize,
+                sizesTried.maxh, sizes.grading
             );
-            if (i > 0)
+            ng::meshParameters parameters = configured;
+            parameters.maxh = sizesTried.maxh;
+            parameters.timeLimit = std::min(attemptLimit, remaining);
+            parameters.sizePoints.insert
+            (
+                parameters.sizePoints.end(),
+                curvature.points.begin(), curvature.points.end()
+            );
+            try
             {
-                Info()
-                    << "    Netgen's STL mesh succeeded at attempt " << i + 1
-                    << " (" << attempts[i].change << ")\n";
-            }
-            if (attempts[i].curvatureRefinement > 0)
-            {
-                logCurvatureSizing
+                ng::volumeMesh m = ng::stlVolumeMesh
                 (
-                    curvature, surface.solidNames,
-                    attempts[i].curvatureRefinement, sizes.minCellSize
+                    surface.points, surface.triangles, geometry.featureEdges(),
+                    parameters, what
                 );
+                if (i > 0)
+                {
+                    Info()
+                        << "    Netgen's STL mesh succeeded at attempt " << i + 1
+                        << " (" << attempt.change << ")\n";
+                }
+                if (sizesTried.curvatureRefinement > 0)
+                {
+                    logCurvatureSizing
+                    (
+                        curvature, surface.solidNames,
+                        sizesTried.curvatureRefinement, sizes.minCellSize
+                    );
+                }
+                return m;
             }
-            return m;
-        }
-        catch (const ng::stlMeshingTimeout& e)
-        {
-            // Every later attempt asks for smaller triangles: it would take
-            // longer still
-            reasons.push_back(e.reason());
-            timedOut = true;
-            break;
-        }
-        catch (const ng::stlMeshingFailure& e)
-        {
-            reasons.push_back(e.reason());
-            if (i + 1 < attempts.size())
+            catch (const ng::stlMeshingTimeout& e)
             {
-                Info()
-                    << "    Netgen's STL mesh failed (" << e.reason()
-                    << "); retrying with " << attempts[i + 1].change << '\n';
+                // Every later attempt asks for smaller triangles: it would
+                // take longer still
+                throw attemptFailed{e.reason(), true};
             }
-        }
+            catch (const ng::stlMeshingFailure& e)
+            {
+                if (i + 1 < attempts.size())
+                {
+                    Info()
+                        << "    Netgen's STL mesh failed (" << e.reason()
+                        << "); retrying with " << attempts[i + 1].change << '\n';
+                }
+                throw attemptFailed{e.reason()};
+            }
+        },
+        failed,
+        withinLadderLimit
+    );
+    if (meshed)
+    {
+        return std::move(*meshed);
     }
 
-    const std::size_t nTried = reasons.size();
+    const std::vector<std::string>& reasons = failed.reasons;
+    const std::size_t nTried = failed.nTried();
     msg message;
     message
         << "Netgen could not mesh " << what << " in " << nTried
@@ -980,7 +990,7 @@ ng::volumeMesh retriedStlMesh
             << (i == 0 ? "as configured" : attempts[i].change) << "): "
             << reasons[i];
     }
-    if (timedOut)
+    if (failed.stopped)
     {
         message
             << "\nEvery further attempt asks for smaller triangles and would"
@@ -989,7 +999,7 @@ ng::volumeMesh retriedStlMesh
         throw FatalError(message, "pmsh::stlGeometry::netgenMesh");
     }
 
-    const meshAttempt& last = attempts[nTried - 1];
+    const stlMeshSizes& last = attempts[nTried - 1].parameters;
     if (nTried < attempts.size())
     {
         message

@@ -282,15 +282,11 @@ void checkBoundary(const pmsh::ng::volumeMesh& m, const std::string& what)
     {
         boundary[b] = m.boundary[b].v;
     }
-    const tetFaceMatch match = matchTetFaces(m.points.size(), m.tets, boundary);
-    if (!match.fits())
-    {
-        throw FatalError
-        (
-            msg() << "Netgen's mesh of " << what << " is inconsistent:" << match.problems,
-            "pmsh::ng::checkBoundary"
-        );
-    }
+    fittingTetFaces
+    (
+        m.points.size(), m.tets, boundary,
+        "Netgen's mesh of " + what + " is inconsistent", "pmsh::ng::checkBoundary"
+    );
 }
 
 

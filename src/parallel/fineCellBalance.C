@@ -122,16 +122,11 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
         diffusionFlows(comm, neighbours, double(nTets), mean, tolerance);
 
     // What lies across each tet face now
-    const tetFaceMatch match = matchTetFaces(mesh.points.size(), mesh.tets, mesh.triangles);
-    if (!match.fits())
-    {
-        throw FatalError
-        (
-            msg() << "This rank's fine mesh and its surface do not fit together:"
-                << match.problems,
-            "balanceFineCells"
-        );
-    }
+    const tetFaceMatch match = fittingTetFaces
+    (
+        mesh.points.size(), mesh.tets, mesh.triangles,
+        "This rank's fine mesh and its surface do not fit together", "balanceFineCells"
+    );
     const faceId nTetFaces = faceId(4*mesh.tets.size());
 
     // Destinations: for each neighbour that gets cells, the tets nearest

@@ -1,4 +1,5 @@
 #include "meshQuality.H"
+#include "checkMeshFaceMetrics.H"
 #include "foamShims.H"
 #include "Info.H"
 #include "stageLog.H"
@@ -116,28 +117,9 @@ void cellCentresAndVolumes
 }
 
 
-//- primitiveMeshTools::faceSkewness (d: owner to neighbour centre) and
-//  boundaryFaceSkewness (d: the normal part of the owner's offset, with
-//  its own normalisation), as polyMeshTools::faceSkewness applies them
-inline scalar skewness
-(
-    const pointField& p,
-    const face& f,
-    const vector& centre,
-    const vector& area,
-    const vector& Cpf,
-    const vector& d,
-    const scalar fd0
-)
+inline pmsh::point3 asPoint3(const Foam::vector& v)
 {
-    const vector sv = Cpf - ((area & Cpf)/((area & d) + ROOTVSMALL))*d;
-    const vector svHat = sv/(mag(sv) + ROOTVSMALL);
-    scalar fd = fd0*mag(d) + ROOTVSMALL;
-    forAll(f, pi)
-    {
-        fd = max(fd, mag(svHat & (p[f[pi]] - centre)));
-    }
-    return mag(sv)/fd;
+    return {v.x(), v.y(), v.z()};
 }
 
 } // End anonymous namespace
@@ -189,20 +171,22 @@ pmsh::meshQualityReport pmsh::meshQualityOf
     {
         const face& f = faces[facei];
         triangleCentreAndArea(p, f, c, s);
+        const pmsh::point3 a = asPoint3(p[f[0]]), b = asPoint3(p[f[1]]), e = asPoint3(p[f[2]]);
+        const pmsh::point3 fc = asPoint3(c);
+        const pmsh::vector3 S = asPoint3(s);
         const Foam::point& ownCc = centres[own[facei]];
-        const Foam::vector Cpf = c - ownCc;
+        const pmsh::vector3 Cpf = asPoint3(c - ownCc);
         const bool internal = facei < nInternal;
         if (!internal && !coupled[facei - nInternal])
         {
-            const Foam::vector normal = s/(mag(s) + ROOTVSMALL);
-            maxSkew = std::max(maxSkew, double(skewness(p, f, c, s, Cpf, normal*(normal & Cpf), 0.4)));
+            maxSkew = std::max(maxSkew, boundaryFaceMetricsOf(a, b, e, fc, S, Cpf).skewness);
             continue;
         }
         const Foam::point& neiCc =
             internal ? centres[mesh.faceNeighbour()[facei]] : neighbourCentres[facei - nInternal];
-        const Foam::vector d = neiCc - ownCc;
-        const double ortho = (d & s)/(mag(d)*mag(s) + ROOTVSMALL);
-        maxSkew = std::max(maxSkew, double(skewness(p, f, c, s, Cpf, d, 0.2)));
+        const pmsh::vector3 d = asPoint3(neiCc - ownCc);
+        const double ortho = nonOrthogonalityCos(S, d);
+        maxSkew = std::max(maxSkew, internalFaceSkewness(a, b, e, fc, S, Cpf, d));
         if (counted[facei])
         {
             minCos = std::min(minCos, ortho);

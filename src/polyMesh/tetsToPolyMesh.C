@@ -392,17 +392,13 @@ pmsh::tetPolyMesh pmsh::tetsToPolyMesh
         points, tets, boundaryTriangles, boundaryRegion, physicalPatches,
         myProcNo, globalPointIds
     );
-    const tetFaceMatch match = matchTetFaces(points.size(), tets, boundaryTriangles);
-    if (!match.fits())
-    {
-        throw FatalError
-        (
-            msg() << "The tets (" << tets.size() << ") and the boundary surface ("
-                << boundaryTriangles.size() << " triangles) do not match:"
-                << match.problems,
-            where
-        );
-    }
+    const tetFaceMatch match = fittingTetFaces
+    (
+        points.size(), tets, boundaryTriangles,
+        msg() << "The tets (" << tets.size() << ") and the boundary surface ("
+            << boundaryTriangles.size() << " triangles) do not match",
+        where
+    );
 
     tetPolyMesh mesh;
     mesh.points = std::move(points);

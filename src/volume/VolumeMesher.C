@@ -229,15 +229,10 @@ void verifyVolumeMesh
     // outward. (With positive tets this also rules out gaps and overlaps.
     // Volumes alone would add up even when a backend duplicates an interior
     // point, as Gmsh 4.8's multithreaded HXT does.)
-    const tetFaceMatch match = matchTetFaces(np, result.tets, surfaceTriangles);
-    if (!match.fits())
-    {
-        throw FatalError
-        (
-            msg() << what << " is not conforming to the surface:" << match.problems,
-            function
-        );
-    }
+    fittingTetFaces
+    (
+        np, result.tets, surfaceTriangles, what + " is not conforming to the surface", function
+    );
 }
 
 } // End anonymous namespace

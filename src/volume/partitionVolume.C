@@ -2,24 +2,33 @@
 #include "childProcess.H"
 #include "tetShape.H"
 #include "pmshError.H"
+#include "retryLadder.H"
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 
 namespace
 {
 
 using namespace pmsh;
 
-struct attempt
+//- What one attempt of the ladder runs
+struct volumeAttempt
 {
     const VolumeMesher* mesher;
     volumeMeshParameters parameters;
-    std::string change;     // what differs from the first attempt
 };
+
+//- "netgen; 1 thread": the mesher, and what else differs from the first
+//  attempt
+std::string describe(const ladderAttempt<volumeAttempt>& a)
+{
+    return a.parameters.mesher->name() + (a.change.empty() ? "" : "; " + a.change);
+}
 
 } // End anonymous namespace
 
@@ -73,27 +82,27 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
     // hangs live, so its retry goes without it; HXT's quality pass is what
     // removes the slivers the contract refuses, so its retry has more steps
     const VolumeMesher* first = meshers.at(0).get();
-    std::vector<attempt> attempts{{first, parameters, ""}};
+    std::vector<ladderAttempt<volumeAttempt>> attempts{{{first, parameters}, ""}};
     volumeMeshParameters p = parameters;
     if (p.threads > 1)
     {
         // Gmsh 4.8's multithreaded HXT can duplicate interior points
         p.threads = 1;
-        attempts.push_back({first, p, "1 thread"});
+        attempts.push_back({{first, p}, "1 thread"});
     }
     if (p.optimisationSteps > 0)
     {
         p.optimisationSteps = first->optimiserMayFail() ? 0 : 2*p.optimisationSteps;
         attempts.push_back
         (
-            {first, p, "optimisationSteps " + std::to_string(p.optimisationSteps)}
+            {{first, p}, "optimisationSteps " + std::to_string(p.optimisationSteps)}
         );
     }
     p.grading = std::min(p.grading, 0.2);
     attempts.push_back
     (
         {
-            first, p,
+            {first, p},
             "optimisationSteps " + std::to_string(p.optimisationSteps)
           + ", grading <= 0.2"
         }
@@ -102,47 +111,67 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
     {
         attempts.push_back
         (
-            {meshers[m].get(), parameters, "the " + meshers[m]->name() + " backend"}
+            {{meshers[m].get(), parameters}, "the " + meshers[m]->name() + " backend"}
         );
     }
 
-    std::string failures;
-    for (std::size_t a = 0; a < attempts.size(); ++a)
+    // Each failure as a line of the error (and of the log, if a later
+    // attempt succeeds)
+    const auto failureLines = [&](const ladderFailures& failed)
     {
-        const attempt& at = attempts[a];
-        try
+        std::string lines;
+        for (std::size_t a = 0; a < failed.nTried(); ++a)
+        {
+            lines += msg()
+                << "\n  attempt " << a + 1 << " (" << describe(attempts[a])
+                << "): " << failed.reasons[a];
+        }
+        return lines;
+    };
+
+    ladderFailures failed;
+    std::optional<partitionVolumeResult> meshed = climbLadder
+    (
+        attempts,
+        [&](const ladderAttempt<volumeAttempt>& at, std::size_t a)
         {
             partitionVolumeResult result;
-            result.mesh = meshInChildProcess
-            (
-                *at.mesher, surfacePoints, surfaceTriangles, at.parameters,
-                at.parameters.what + ", attempt " + std::to_string(a + 1) + " ("
-              + at.mesher->name() + (at.change.empty() ? "" : "; " + at.change) + ")"
-            );
-            result.backend = at.mesher->name();
+            try
+            {
+                result.mesh = meshInChildProcess
+                (
+                    *at.parameters.mesher, surfacePoints, surfaceTriangles,
+                    at.parameters.parameters,
+                    at.parameters.parameters.what + ", attempt " + std::to_string(a + 1)
+                  + " (" + describe(at) + ")"
+                );
+            }
+            catch (const FatalError& e)
+            {
+                throw attemptFailed{e.message()};
+            }
+            result.backend = at.parameters.mesher->name();
             result.attempts = int(a) + 1;
             result.nCells = label(result.mesh.tets.size());
             const tetShapeRange shape = tetShapeRangeOf(result.mesh);
             result.minDihedral = shape.minDihedral;
             result.maxDihedral = shape.maxDihedral;
             result.maxAspectRatio = shape.maxAspectRatio;
-            result.failures = failures;
             return result;
-        }
-        catch (const FatalError& e)
-        {
-            failures += msg()
-                << "\n  attempt " << a + 1 << " (" << at.mesher->name()
-                << (at.change.empty() ? "" : "; " + at.change)
-                << "): " << e.message();
-        }
+        },
+        failed
+    );
+    if (meshed)
+    {
+        meshed->failures = failureLines(failed);
+        return std::move(*meshed);
     }
 
     writeSurfaceStl(failedSurfaceFile, "surface", surfacePoints, surfaceTriangles);
     throw FatalError
     (
         msg() << "Volume meshing of " << parameters.what << " failed in all "
-            << attempts.size() << " attempts:" << failures << "\n"
+            << attempts.size() << " attempts:" << failureLines(failed) << "\n"
             << "Its surface is written to " << failedSurfaceFile << " for diagnosis.\n"
             << advice,
         "meshVolumeWithFallbacks"

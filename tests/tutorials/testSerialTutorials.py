@@ -132,6 +132,25 @@ class sphere(CaseTest):
         # estimate's factor
         self.assertGreater(s["estimatedCellsPerWeighted"], 0)
 
+    def test_faceMetricsAsCheckMesh(self):
+        """checkMeshFaceMetrics.H, the kernel of the quality pass and of
+        summary.json's quality: max and average non-orthogonality and max
+        skewness as OpenFOAM's checkMesh finds them on the written mesh.
+        hxt with the pass: the worst skewness on a boundary face; Netgen
+        unoptimised at level 0: on an internal face."""
+        for mesher, steps, levels in (("hxt", 3, 1), ("netgen", 0, 0)):
+            c = self.case("sphere", refinementLevels=levels, volumeMesher=mesher,
+                          optimisationSteps=steps)
+            c.run("pmshFoam")
+            text = c.check_mesh()
+            non_orth = re.search(r"non-orthogonality Max:\s*([\d.]+)\s+average:\s*([\d.]+)", text)
+            skew = re.search(r"Max skewness =\s*([\d.]+)", text)
+            with open(os.path.join(c.dir, "postProcessing/pmshFoam/summary.json")) as f:
+                q = json.load(f)["quality"]
+            self.assertAlmostEqual(q["maxNonOrthogonality"], float(non_orth.group(1)), places=4, msg=mesher)
+            self.assertAlmostEqual(q["avgNonOrthogonality"], float(non_orth.group(2)), places=4, msg=mesher)
+            self.assertAlmostEqual(q["maxSkewness"], float(skew.group(1)), places=4, msg=mesher)
+
     def test_tutorialAllrunEndsWithMeshOK(self):
         c = self.case("sphere")
         env = openfoam_environment()

@@ -3,6 +3,7 @@
 // in ascending order of their points, and every kind of misfit reported.
 
 #include "tetFaceMatching.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
@@ -115,3 +116,29 @@ TEST(tetFaceMatching, twoTetsAndTheirSurfaceFit)
     s.push_back(surface[0]);
     EXPECT_NE(problemsWith(s).find("1 faces are shared by more than two tets"), std::string::npos);
 }
+
+
+TEST(tetFaceMatching, fittingFacesSayWhatIsAcrossElseThrowTheMismatchAndItsProblems)
+{
+    const std::vector<tetVerts> tets{{0, 1, 2, 3}, {4, 1, 3, 2}};
+    std::vector<triVerts> surface;
+    for (const tetVerts& t : tets)
+    {
+        for (int f = 0; f < 3; ++f) surface.push_back(tetFace(t, f));
+    }
+    const tetFaceMatch m = fittingTetFaces(5, tets, surface, "unused", "here");
+    EXPECT_EQ(m.nTetFaces, faceId(8));
+    EXPECT_EQ(m.acrossOf(3), 1);                    // face 3 of tet 0: tet 1
+    EXPECT_EQ(m.acrossOf(4 + 3), 0);
+    EXPECT_EQ(m.acrossOf(4 + 1), acrossBoundary(4));  // face 1 of tet 1: triangle 4
+    EXPECT_TRUE(isAcrossBoundary(m.acrossOf(0)));
+    EXPECT_EQ(boundaryAcross(m.acrossOf(0)), 0);
+
+    surface.pop_back();
+    EXPECT_FATAL
+    (
+        fittingTetFaces(5, tets, surface, "The test mesh does not fit", "here"),
+        "The test mesh does not fit:\n    1 tet faces are on no other tet"
+    );
+}
+

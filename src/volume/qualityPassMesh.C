@@ -1,0 +1,233 @@
+#include "qualityPassMesh.H"
+
+#include <algorithm>
+#include <numeric>
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+pmsh::qualityPass::passMesh::passMesh
+(
+    TetMesh& mesh,
+    label nFixed,
+    const std::vector<triVerts>& triangles,
+    const std::vector<char>& interface
+)
+:
+    points_(mesh.points),
+    tets_(mesh.tets),
+    nFixed_(nFixed),
+    triangles_(triangles),
+    triStart_(nFixed + 1, 0),
+    pointTris_(3*triangles.size()),
+    processor_(triangles.size() + 1, 0)
+{
+    for (const triVerts& f : triangles)
+    {
+        for (label p : f) ++triStart_[p + 1];
+    }
+    std::partial_sum(triStart_.begin(), triStart_.end(), triStart_.begin());
+    std::vector<label> fill(triStart_.begin(), triStart_.end() - 1);
+    for (label t = 0; t < label(triangles.size()); ++t)
+    {
+        for (label p : triangles[t]) pointTris_[fill[p]++] = t;
+        if (!interface.empty() && interface[t]) processor_[t] = 1;
+    }
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * //
+
+void pmsh::qualityPass::passMesh::rebuild()
+{
+    tets_.erase
+    (
+        std::remove_if
+        (
+            tets_.begin(), tets_.end(), [](const tetVerts& c) { return c[0] < 0; }
+        ),
+        tets_.end()
+    );
+    start_.assign(points_.size() + 1, 0);
+    for (const tetVerts& c : tets_)
+    {
+        for (label p : c) ++start_[p + 1];
+    }
+    std::partial_sum(start_.begin(), start_.end(), start_.begin());
+    pointTets_.resize(start_.back());
+    std::vector<label> fill(start_.begin(), start_.end() - 1);
+    for (label t = 0; t < label(tets_.size()); ++t)
+    {
+        for (label p : tets_[t]) pointTets_[fill[p]++] = t;
+    }
+    across_.resize(4*tets_.size());
+    for (label t = 0; t < label(tets_.size()); ++t)
+    {
+        for (int k = 0; k < 4; ++k)
+        {
+            const triVerts f = tetFace(tets_[t], k);
+            const label u = findTet(t, f);
+            across_[4*t + k] = u >= 0 ? u : acrossBoundary(boundaryTriangle(f));
+        }
+    }
+    locked_.assign(points_.size(), 0);
+}
+
+
+double pmsh::qualityPass::passMesh::faceBadness(label t, int k) const
+{
+    const label u = across_[4*t + k];
+    if (u >= 0 && u < t) return -1;
+    return badnessOf(tets_[t], k, u, [&](label q) -> const point3& { return points_[q]; });
+}
+
+
+pmsh::faceQuality pmsh::qualityPass::passMesh::worstFaces() const
+{
+    double tan2 = 0, skew = 0;
+    for (label t = 0; t < label(tets_.size()); ++t)
+    {
+        for (int k = 0; k < 4; ++k)
+        {
+            const label u = across_[4*t + k];
+            if (u >= 0 && u < t) continue;
+            const measure m = measureOf
+            (
+                tets_[t], k, u, [&](label q) -> const point3& { return points_[q]; }
+            );
+            if (nonOrthogonalityCounts(u)) tan2 = std::max(tan2, m.tan2);
+            skew = std::max(skew, m.skew);
+        }
+    }
+    return {degrees(tan2), skew};
+}
+
+
+pmsh::label pmsh::qualityPass::passMesh::findTet(label t, const triVerts& f) const
+{
+    for (label i = start_[f[0]]; i < start_[f[0] + 1]; ++i)
+    {
+        const label u = pointTets_[i];
+        if (u != t && has(u, f[1]) && has(u, f[2]))
+        {
+            return u;
+        }
+    }
+    return -1;
+}
+
+
+pmsh::label pmsh::qualityPass::passMesh::boundaryTriangle(const triVerts& f) const
+{
+    if (f[0] < nFixed_)
+    {
+        for (label i = triStart_[f[0]]; i < triStart_[f[0] + 1]; ++i)
+        {
+            const triVerts& g = triangles_[pointTris_[i]];
+            const auto in = [&](label p) { return g[0] == p || g[1] == p || g[2] == p; };
+            if (in(f[1]) && in(f[2])) return pointTris_[i];
+        }
+    }
+    return label(triangles_.size());
+}
+
+
+bool pmsh::qualityPass::passMesh::addressSet
+(
+    const std::vector<tetVerts>& set,
+    const std::vector<label>& old,
+    std::vector<std::array<label, 4>>& acrossOf,
+    std::vector<std::array<label, 4>>& inSet
+) const
+{
+    const auto sorted = [](triVerts f)
+    {
+        std::sort(f.begin(), f.end());
+        return f;
+    };
+    std::vector<std::array<triVerts, 4>> faces(set.size());
+    for (std::size_t i = 0; i < set.size(); ++i)
+    {
+        for (int k = 0; k < 4; ++k) faces[i][k] = sorted(tetFace(set[i], k));
+    }
+    // The faces of the old tets towards the rest of the mesh
+    std::vector<std::pair<triVerts, label>> outer;
+    for (label t : old)
+    {
+        for (int k = 0; k < 4; ++k)
+        {
+            const label u = across_[4*t + k];
+            if (std::find(old.begin(), old.end(), u) == old.end())
+            {
+                outer.push_back({sorted(tetFace(tets_[t], k)), u});
+            }
+        }
+    }
+    acrossOf.assign(set.size(), {0, 0, 0, 0});      // each set below, or false
+    inSet.assign(set.size(), {-1, -1, -1, -1});
+    for (std::size_t i = 0; i < set.size(); ++i)
+    {
+        for (int k = 0; k < 4; ++k)
+        {
+            const triVerts& f = faces[i][k];
+            bool found = false;
+            for (std::size_t j = 0; j < set.size() && !found; ++j)
+            {
+                if (j == i) continue;
+                for (int l = 0; l < 4 && !found; ++l)
+                {
+                    if (f == faces[j][l])
+                    {
+                        inSet[i][k] = label(j);
+                        found = true;
+                    }
+                }
+            }
+            for (std::size_t j = 0; j < outer.size() && !found; ++j)
+            {
+                if (f == outer[j].first)
+                {
+                    acrossOf[i][k] = outer[j].second;
+                    found = true;
+                }
+            }
+            if (!found) return false;
+        }
+    }
+    return true;
+}
+
+
+void pmsh::qualityPass::passMesh::replace(const std::vector<label>& old, const std::vector<tetVerts>& created)
+{
+    for (label t : old)
+    {
+        for (label p : tets_[t]) locked_[p] = 1;
+        tets_[t][0] = -1;
+    }
+    for (const tetVerts& c : created) tets_.push_back(c);
+    ++nFlips;
+}
+
+
+bool pmsh::qualityPass::passMesh::current(label t) const
+{
+    for (label p : tets_[t])
+    {
+        if (locked_[p]) return false;
+    }
+    for (int k = 0; k < 4; ++k)
+    {
+        const label u = across_[4*t + k];
+        if (u >= 0)
+        {
+            for (label p : tets_[u])
+            {
+                if (locked_[p]) return false;
+            }
+        }
+    }
+    return true;
+}
+
+
+// ************************************************************************* //
