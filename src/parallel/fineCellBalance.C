@@ -89,48 +89,18 @@ std::map<int, double> diffusionFlows
     return flow;
 }
 
-} // End anonymous namespace
-
-
-pmsh::fineBalanceStats pmsh::balanceFineCells
+// Destinations: for each neighbour that gets cells, the tets nearest
+// their interface, layer by layer (breadth first from the interface)
+std::vector<int> tetDestinations
 (
-    const Communicator& comm,
-    rankTets& mesh,
-    double tolerance
+    const rankTets& mesh,
+    const tetFaceMatch& match,
+    const std::map<int, double>& flow,
+    int me
 )
 {
-    fineBalanceStats stats;
-    if (!comm.parallel())
-    {
-        return stats;
-    }
-    const int me = comm.rank();
     const label nTets = label(mesh.tets.size());
-    const std::vector<double> loads = comm.allGather(double(nTets));
-    double total = 0;
-    for (double l : loads) total += l;
-    const double mean = total/comm.size();
-    stats.before = *std::max_element(loads.begin(), loads.end())/mean;
-    stats.after = stats.before;
-    if (stats.before <= 1 + tolerance)
-    {
-        return stats;
-    }
-
-    const std::vector<int> neighbours = neighbourRanks(mesh);
-    const std::map<int, double> flow =
-        diffusionFlows(comm, neighbours, double(nTets), mean, tolerance);
-
-    // What lies across each tet face now
-    const tetFaceMatch match = fittingTetFaces
-    (
-        mesh.points.size(), mesh.tets, mesh.triangles,
-        "This rank's fine mesh and its surface do not fit together", "balanceFineCells"
-    );
     const faceId nTetFaces = faceId(4*mesh.tets.size());
-
-    // Destinations: for each neighbour that gets cells, the tets nearest
-    // their interface, layer by layer
     std::vector<int> dest(nTets, me);
     for (const auto& [s, f] : flow)
     {
@@ -170,8 +140,21 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
             }
         }
     }
+    return dest;
+}
 
-    // Where the tets behind this rank's processor faces go, from their ranks
+
+// Where the tets behind this rank's processor faces go, from their ranks,
+// by the faces' global keys
+std::map<globalFaceKey, int> destinationsAcross
+(
+    const Communicator& comm,
+    const rankTets& mesh,
+    const tetFaceMatch& match,
+    const std::vector<int>& dest
+)
+{
+    const faceId nTetFaces = faceId(4*mesh.tets.size());
     std::vector<std::vector<faceDestination>> tell(comm.size());
     for (faceId id = 0; id < nTetFaces; ++id)
     {
@@ -190,31 +173,74 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
             destAcross[fd.key] = fd.dest;
         }
     }
+    return destAcross;
+}
 
-    // Every tet's faces as they will be at its destination
-    auto acrossOf = [&](label t, int fi) -> label
+
+// Every tet's faces as they will be at its destination
+class acrossAfterMove
+{
+    const rankTets& mesh_;
+    const tetFaceMatch& match_;
+    const std::vector<int>& dest_;
+    const std::map<globalFaceKey, int>& destAcross_;
+    const faceId nTetFaces_;
+
+public:
+
+    acrossAfterMove
+    (
+        const rankTets& mesh,
+        const tetFaceMatch& match,
+        const std::vector<int>& dest,
+        const std::map<globalFaceKey, int>& destAcross
+    )
+    :
+        mesh_(mesh),
+        match_(match),
+        dest_(dest),
+        destAcross_(destAcross),
+        nTetFaces_(faceId(4*mesh.tets.size()))
+    {}
+
+    //- What lies across face fi of tet t once it is at its destination
+    label operator()(label t, int fi) const
     {
-        const faceId other = match.across[4*t + fi];
+        const faceId other = match_.across[4*t + fi];
         int d;
-        if (other < nTetFaces)
+        if (other < nTetFaces_)
         {
-            d = dest[other/4];
+            d = dest_[other/4];
         }
         else
         {
-            const label r = mesh.region[other - nTetFaces];
+            const label r = mesh_.region[other - nTetFaces_];
             if (!isInterfaceRegion(r))
             {
                 return r;   // a physical patch
             }
-            d = destAcross.at(globalKeyOf(mesh.triangles[other - nTetFaces], mesh.globalIds));
+            d = destAcross_.at(globalKeyOf(mesh_.triangles[other - nTetFaces_], mesh_.globalIds));
         }
-        return d == dest[t] ? internalFace : interfaceRegion(d);
-    };
+        return d == dest_[t] ? internalFace : interfaceRegion(d);
+    }
+};
 
-    std::vector<std::vector<movedTet>> send(comm.size());
-    std::vector<label> staying;
-    for (label t = 0; t < nTets; ++t)
+
+// The tets leaving this rank, packed per destination; the staying tets
+// and what will lie across their faces
+std::vector<std::vector<movedTet>> packMovedTets
+(
+    const rankTets& mesh,
+    const std::vector<int>& dest,
+    const acrossAfterMove& acrossOf,
+    int me,
+    int nRanks,
+    std::vector<label>& staying,
+    std::vector<std::array<label, 4>>& stayingAcross
+)
+{
+    std::vector<std::vector<movedTet>> send(nRanks);
+    for (label t = 0; t < label(mesh.tets.size()); ++t)
     {
         if (dest[t] == me)
         {
@@ -233,7 +259,7 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
         m.zone = mesh.tetZone.empty() ? 0 : mesh.tetZone[t];
         send[dest[t]].push_back(m);
     }
-    std::vector<std::array<label, 4>> stayingAcross(staying.size());
+    stayingAcross.resize(staying.size());
     for (std::size_t i = 0; i < staying.size(); ++i)
     {
         for (int k = 0; k < 4; ++k)
@@ -241,16 +267,29 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
             stayingAcross[i][k] = acrossOf(staying[i], k);
         }
     }
-    std::vector<std::vector<movedTet>> received = comm.exchange(send);
-    send = {};
+    return send;
+}
 
-    // The new mesh: the staying tets' points in their order, then the
-    // points that came with others (each once, by global number)
+
+// The new mesh of a rank, tet by tet: points each once, by global number,
+// boundary faces where something other than a local tet lies across
+class rankTetsBuilder
+{
+    const bool zoned_;
+    std::unordered_map<label, label> pointOf_;
+
+public:
+
     rankTets out;
-    std::unordered_map<label, label> pointOf;
-    auto addPoint = [&](label g, const point3& x, const barycentricId& id)
+
+    explicit rankTetsBuilder(bool zoned)
+    :
+        zoned_(zoned)
+    {}
+
+    label addPoint(label g, const point3& x, const barycentricId& id)
     {
-        const auto inserted = pointOf.emplace(g, label(out.points.size()));
+        const auto inserted = pointOf_.emplace(g, label(out.points.size()));
         if (inserted.second)
         {
             out.points.push_back(x);
@@ -258,12 +297,12 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
             out.pointIds.push_back(id);
         }
         return inserted.first->second;
-    };
-    const bool zoned = !mesh.tetZone.empty();
-    auto addTet = [&](const tetVerts& t, const std::array<label, 4>& across, label zone)
+    }
+
+    void addTet(const tetVerts& t, const std::array<label, 4>& across, label zone)
     {
         out.tets.push_back(t);
-        if (zoned) out.tetZone.push_back(zone);
+        if (zoned_) out.tetZone.push_back(zone);
         const auto faces = outwardTetFaces(t);
         for (int k = 0; k < 4; ++k)
         {
@@ -273,20 +312,36 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
                 out.region.push_back(across[k]);
             }
         }
-    };
+    }
+};
+
+
+// The new mesh: the staying tets' points in their order, then the points
+// that came with others. mesh is freed before the received tets are added
+// (the peak memory of the move); returns the number received.
+std::int64_t assembleMovedMesh
+(
+    rankTets& mesh,
+    const std::vector<label>& staying,
+    const std::vector<std::array<label, 4>>& stayingAcross,
+    std::vector<std::vector<movedTet>>& received
+)
+{
+    const bool zoned = !mesh.tetZone.empty();
+    rankTetsBuilder builder(zoned);
     for (std::size_t i = 0; i < staying.size(); ++i)
     {
         const tetVerts& old = mesh.tets[staying[i]];
         tetVerts t;
         for (int k = 0; k < 4; ++k)
         {
-            t[k] = addPoint
+            t[k] = builder.addPoint
             (
                 mesh.globalIds[old[k]], mesh.points[old[k]],
                 mesh.pointIds.empty() ? barycentricId() : mesh.pointIds[old[k]]
             );
         }
-        addTet(t, stayingAcross[i], zoned ? mesh.tetZone[staying[i]] : 0);
+        builder.addTet(t, stayingAcross[i], zoned ? mesh.tetZone[staying[i]] : 0);
     }
     mesh = rankTets();
     std::int64_t nReceived = 0;
@@ -297,14 +352,72 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
             tetVerts t;
             for (int k = 0; k < 4; ++k)
             {
-                t[k] = addPoint(m.globalIds[k], m.points[k], m.pointIds[k]);
+                t[k] = builder.addPoint(m.globalIds[k], m.points[k], m.pointIds[k]);
             }
-            addTet(t, m.across, m.zone);
+            builder.addTet(t, m.across, m.zone);
             ++nReceived;
         }
         fromRank = {};
     }
-    mesh = std::move(out);
+    mesh = std::move(builder.out);
+    return nReceived;
+}
+
+} // End anonymous namespace
+
+
+pmsh::fineBalanceStats pmsh::balanceFineCells
+(
+    const Communicator& comm,
+    rankTets& mesh,
+    double tolerance
+)
+{
+    fineBalanceStats stats;
+    if (!comm.parallel())
+    {
+        return stats;
+    }
+    const int me = comm.rank();
+    const label nTets = label(mesh.tets.size());
+    const std::vector<double> loads = comm.allGather(double(nTets));
+    double total = 0;
+    for (double l : loads) total += l;
+    const double mean = total/comm.size();
+    stats.before = *std::max_element(loads.begin(), loads.end())/mean;
+    stats.after = stats.before;
+    if (stats.before <= 1 + tolerance)
+    {
+        return stats;
+    }
+
+    const std::vector<int> neighbours = neighbourRanks(mesh);
+    const std::map<int, double> flow =
+        diffusionFlows(comm, neighbours, double(nTets), mean, tolerance);
+
+    // What lies across each tet face now
+    const tetFaceMatch match = fittingTetFaces
+    (
+        mesh.points.size(), mesh.tets, mesh.triangles,
+        "This rank's fine mesh and its surface do not fit together", "balanceFineCells"
+    );
+
+    const std::vector<int> dest = tetDestinations(mesh, match, flow, me);
+    const std::map<globalFaceKey, int> destAcross =
+        destinationsAcross(comm, mesh, match, dest);
+
+    std::vector<label> staying;
+    std::vector<std::array<label, 4>> stayingAcross;
+    std::vector<std::vector<movedTet>> send = packMovedTets
+    (
+        mesh, dest, acrossAfterMove(mesh, match, dest, destAcross), me,
+        comm.size(), staying, stayingAcross
+    );
+    std::vector<std::vector<movedTet>> received = comm.exchange(send);
+    send = {};
+
+    const std::int64_t nReceived =
+        assembleMovedMesh(mesh, staying, stayingAcross, received);
 
     stats.moved = comm.sum(nReceived);
     const std::vector<double> after = comm.allGather(double(mesh.tets.size()));

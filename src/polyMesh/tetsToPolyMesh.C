@@ -15,23 +15,16 @@ using namespace pmsh;
 const char* const where = "tetsToPolyMesh";
 
 
-//- Check the input sizes, indices, tet volumes, point usage, patches and
-//  regions (the tets and the surface are matched afterwards).
-void checkInput
+//- Check the sizes of the input arrays and the rank.
+void checkSizes
 (
-    const std::vector<point3>& points,
-    const std::vector<tetVerts>& tets,
-    const std::vector<triVerts>& boundaryTriangles,
+    std::size_t nPoints,
+    std::size_t nTris,
     const std::vector<label>& boundaryRegion,
-    const std::vector<meshPatch>& physicalPatches,
     label myProcNo,
     const std::vector<label>& globalPointIds
 )
 {
-    const std::size_t nPoints = points.size();
-    const std::size_t nTets = tets.size();
-    const std::size_t nTris = boundaryTriangles.size();
-
     if (nPoints > std::size_t(std::numeric_limits<label>::max()))
     {
         throw FatalError
@@ -63,7 +56,12 @@ void checkInput
             where
         );
     }
+}
 
+
+//- Physical patches: not processor patches, named, names unique.
+void checkPatchNames(const std::vector<meshPatch>& physicalPatches)
+{
     std::unordered_set<std::string> names;
     for (const meshPatch& p : physicalPatches)
     {
@@ -86,6 +84,20 @@ void checkInput
             );
         }
     }
+}
+
+
+//- Point indices in range, tets of positive volume, every point used.
+void checkTetsAndTriangles
+(
+    const std::vector<point3>& points,
+    const std::vector<tetVerts>& tets,
+    const std::vector<triVerts>& boundaryTriangles
+)
+{
+    const std::size_t nPoints = points.size();
+    const std::size_t nTets = tets.size();
+    const std::size_t nTris = boundaryTriangles.size();
 
     std::vector<char> used(nPoints, 0);
     problemCount badIndex, badVolume;
@@ -151,9 +163,20 @@ void checkInput
             where
         );
     }
+}
 
-    // A region is a physical patch, or an interface with another rank
-    // (which needs global point ids to order the processor faces)
+
+//- A region is a physical patch, or an interface with another rank
+//  (which needs global point ids to order the processor faces).
+void checkRegions
+(
+    const std::vector<label>& boundaryRegion,
+    const std::vector<meshPatch>& physicalPatches,
+    label myProcNo,
+    const std::vector<label>& globalPointIds
+)
+{
+    const std::size_t nTris = boundaryRegion.size();
     problemCount badRegion;
     for (std::size_t b = 0; b < nTris; ++b)
     {
@@ -191,6 +214,30 @@ void checkInput
             where
         );
     }
+}
+
+
+//- Check the input sizes, indices, tet volumes, point usage, patches and
+//  regions (the tets and the surface are matched afterwards).
+void checkInput
+(
+    const std::vector<point3>& points,
+    const std::vector<tetVerts>& tets,
+    const std::vector<triVerts>& boundaryTriangles,
+    const std::vector<label>& boundaryRegion,
+    const std::vector<meshPatch>& physicalPatches,
+    label myProcNo,
+    const std::vector<label>& globalPointIds
+)
+{
+    checkSizes
+    (
+        points.size(), boundaryTriangles.size(), boundaryRegion, myProcNo,
+        globalPointIds
+    );
+    checkPatchNames(physicalPatches);
+    checkTetsAndTriangles(points, tets, boundaryTriangles);
+    checkRegions(boundaryRegion, physicalPatches, myProcNo, globalPointIds);
 }
 
 

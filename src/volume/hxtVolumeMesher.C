@@ -134,6 +134,269 @@ int regionSizeFields
 }
 
 
+//- Gmsh's model of one partition's volume, built and read back in named
+//  steps. Quirk: Gmsh 4.8 orders something by address (hxtVolumeMesher.H),
+//  so its mesh depends on the heap's history: every container lives as
+//  long as the model, declared in the order the steps fill it, so that the
+//  steps allocate and free as one function would.
+class hxtModel
+{
+    const std::vector<point3>& surfacePoints_;
+    const std::vector<triVerts>& surfaceTriangles_;
+    const std::size_t nSurface_;
+
+    //- Shell of each surface triangle, and the triangles of each shell
+    std::vector<label> shellOf_;
+    std::vector<std::vector<label>> shells_;
+    //- Gmsh's discrete surface of each shell
+    std::vector<int> shellSurface_;
+    std::vector<std::size_t> tagOfPoint_;
+    //- The outer shells, their sizes, and the surface loops of each volume
+    std::vector<std::size_t> outers_;
+    std::vector<double> outerSize_;
+    std::vector<std::vector<int>> loops_;
+    //- The interior size cap, as Gmsh's MathEval field reads it
+    std::ostringstream cap_;
+    //- Gmsh's nodes, and the index in the mesh of each node tag
+    std::vector<std::size_t> nodeTags_;
+    std::vector<double> coords_, parametric_;
+    std::vector<std::size_t> newTags_;
+    std::vector<label> index_;
+    std::vector<std::size_t> noElementTags_, elementNodes_;
+
+public:
+
+    hxtModel
+    (
+        const std::vector<point3>& surfacePoints,
+        const std::vector<triVerts>& surfaceTriangles
+    )
+    :
+        surfacePoints_(surfacePoints),
+        surfaceTriangles_(surfaceTriangles),
+        nSurface_(surfacePoints.size())
+    {}
+
+    //- One discrete surface per closed shell (its triangles in shells_): a
+    //  single surface loop around a surface of several shells_ (a partition
+    //  around the body of a body-in-box domain) makes HXT fail. Node tags, not
+    //  coordinates, map Gmsh's nodes back to ours: surface point
+    //  surfacePointOfTag[tag - 1]. Quirk: Gmsh renumbers the nodes unless their
+    //  tags run 1..n without gaps, so each shell's points get the next tags in
+    //  turn.
+    void addShellSurfaces(std::vector<label>& surfacePointOfTag)
+    {
+        label nShells = 0;
+        shellOf_ = surfaceShells(label(nSurface_), surfaceTriangles_, nShells);
+        shells_.resize(nShells);
+        for (std::size_t t = 0; t < surfaceTriangles_.size(); ++t)
+        {
+            shells_[shellOf_[t]].push_back(label(t));
+        }
+        shellSurface_.resize(shells_.size());
+        tagOfPoint_.assign(nSurface_, 0);
+        surfacePointOfTag.reserve(nSurface_);
+        for (std::size_t s = 0; s < shells_.size(); ++s)
+        {
+            shellSurface_[s] = gmsh::model::addDiscreteEntity(2);
+            std::vector<std::size_t> tags;
+            std::vector<double> xyz;
+            std::vector<std::size_t> triangleNodes;
+            triangleNodes.reserve(3*shells_[s].size());
+            for (label i : shells_[s])
+            {
+                for (label p : surfaceTriangles_[i])
+                {
+                    if (tagOfPoint_[p] == 0)
+                    {
+                        surfacePointOfTag.push_back(p);
+                        tagOfPoint_[p] = surfacePointOfTag.size();
+                        tags.push_back(tagOfPoint_[p]);
+                        xyz.insert(xyz.end(), surfacePoints_[p].begin(), surfacePoints_[p].end());
+                    }
+                    triangleNodes.push_back(tagOfPoint_[p]);
+                }
+            }
+            gmsh::model::mesh::addNodes(2, shellSurface_[s], tags, xyz);
+            gmsh::model::mesh::addElementsByType(shellSurface_[s], 2, {}, triangleNodes);
+        }
+    }
+
+    //- One volume per outer shell with its holes. Quirk: HXT leaves a
+    //  discrete volume (addDiscreteEntity(3)) empty ("No elements in volume");
+    //  a built-in-kernel volume bounded by surface loops_ on the discrete
+    //  surfaces is meshed (the first loop its outside, the others its holes),
+    //  and the surface mesh is kept as it is. A shell is a hole where the
+    //  volume lies outside it (its normals point into it: winding number -1 at
+    //  points inside); it belongs to the smallest outer shell around it.
+    void addVolumes()
+    {
+        for (std::size_t s = 0; s < shells_.size(); ++s)
+        {
+            double volume6 = 0;
+            for (label i : shells_[s])
+            {
+                const triVerts& t = surfaceTriangles_[i];
+                volume6 += dot(surfacePoints_[t[0]], cross(surfacePoints_[t[1]], surfacePoints_[t[2]]));
+            }
+            if (volume6 > 0)
+            {
+                outers_.push_back(s);
+                outerSize_.push_back(volume6);
+            }
+        }
+        loops_.resize(outers_.size());
+        for (std::size_t o = 0; o < outers_.size(); ++o)
+        {
+            loops_[o].push_back(gmsh::model::geo::addSurfaceLoop({shellSurface_[outers_[o]]}));
+        }
+        for (std::size_t s = 0; s < shells_.size(); ++s)
+        {
+            const bool outer = std::find(outers_.begin(), outers_.end(), s) != outers_.end();
+            if (outer || outers_.empty()) continue;
+            const point3& p = surfacePoints_[surfaceTriangles_[shells_[s][0]][0]];
+            std::size_t owner = outers_.size();
+            for (std::size_t o = 0; o < outers_.size(); ++o)
+            {
+                const bool around =
+                    outers_.size() == 1
+                 || windingNumber(surfacePoints_, surfaceTriangles_, shells_[outers_[o]], p) > 0.5;
+                if (around && (owner == outers_.size() || outerSize_[o] < outerSize_[owner]))
+                {
+                    owner = o;
+                }
+            }
+            loops_[owner == outers_.size() ? 0 : owner].push_back
+            (
+                gmsh::model::geo::addSurfaceLoop({shellSurface_[s]})
+            );
+        }
+        for (const std::vector<int>& volumeLoops : loops_)
+        {
+            gmsh::model::geo::addVolume(volumeLoops);
+        }
+        gmsh::model::geo::synchronize();
+    }
+
+    //- HXT, its threads, the size field and Gmsh's optimiser.
+    void setMeshingOptions(const volumeMeshParameters& parameters)
+    {
+        gmsh::option::setNumber("Mesh.Algorithm3D", 10);       // HXT
+        // Quirk: with more than one thread, Debian's Gmsh 4.8.4 HXT now and
+        // then returns a duplicated interior node (faces matching nothing);
+        // VolumeMesher::mesh catches it and meshVolumeWithFallbacks retries
+        // with one thread
+        gmsh::option::setNumber("General.NumThreads", parameters.threads);
+        // Interior size grows from the surface edge lengths, as Netgen's,
+        // capped at the fine size (Netgen's maxh) by a constant background
+        // field. Partition interfaces are refined coarse interior faces,
+        // whose edges are up to 3x the fine size: without the cap_, cells
+        // near them would be coarser than in a serial run of the same case.
+        // (The cap_ at 1.2x the fine size, which matches Netgen's serial cell
+        // count better, gave 25-35% fewer cells on 2-4 ranks than on one;
+        // at 1x the count varies by under 10% with the number of ranks.)
+        // Quirk: the same cap_ as Mesh.MeshSizeMax makes Gmsh 4.8.4 crash
+        // (SIGSEGV in hxtRefineTetrahedra) whenever it lies below the longer
+        // surface edges, which partition interfaces always have; the field
+        // gives the same sizes without the crash.
+        gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
+        const int sizeField = gmsh::model::mesh::field::add("MathEval");
+        cap_ << std::setprecision(17) << parameters.maxCellSize;
+        gmsh::model::mesh::field::setString(sizeField, "F", cap_.str());
+        gmsh::model::mesh::field::setAsBackgroundMesh
+        (
+            regionSizeFields(parameters.regions, parameters.maxCellSize, sizeField)
+        );
+        // Gmsh's own tet optimiser costs next to nothing and takes the
+        // worst faces from about 80 to 65 degrees; the quality pass below
+        // does the rest (bench/results/quality.md)
+        gmsh::option::setNumber("Mesh.Optimize", parameters.optimisationSteps > 0);
+        gmsh::option::setNumber("Mesh.OptimizeThreshold", 0.3);
+    }
+
+    //- The nodes of Gmsh's mesh into result.points: the surface points
+    //  first, where Gmsh put them, then the new nodes in tag order; index_
+    //  holds the point of each node tag (-1: none).
+    void readNodes
+    (
+        const std::vector<label>& surfacePointOfTag,
+        TetMesh& result
+    )
+    {
+        gmsh::model::mesh::getNodes(nodeTags_, coords_, parametric_, -1, -1, false, false);
+
+        // Tags 1..nSurface are the surface points (where Gmsh put them:
+        // whether they are still where they went in is VolumeMesher::mesh's
+        // to check); new nodes follow in tag order
+        result.points = surfacePoints_;
+        for (std::size_t k = 0; k < nodeTags_.size(); ++k)
+        {
+            if (nodeTags_[k] <= nSurface_)
+            {
+                result.points[surfacePointOfTag[nodeTags_[k] - 1]] =
+                    {coords_[3*k], coords_[3*k + 1], coords_[3*k + 2]};
+            }
+            else
+            {
+                newTags_.push_back(k);
+            }
+        }
+        std::sort
+        (
+            newTags_.begin(), newTags_.end(),
+            [&](std::size_t a, std::size_t b) { return nodeTags_[a] < nodeTags_[b]; }
+        );
+        std::size_t maxTag = nSurface_;
+        for (std::size_t k : newTags_) maxTag = std::max(maxTag, nodeTags_[k]);
+        index_.assign(maxTag + 1, -1);
+        for (std::size_t i = 0; i < nSurface_; ++i) index_[i + 1] = surfacePointOfTag[i];
+
+        result.points.reserve(nSurface_ + newTags_.size());
+        for (std::size_t k : newTags_)
+        {
+            index_[nodeTags_[k]] = label(result.points.size());
+            result.points.push_back({coords_[3*k], coords_[3*k + 1], coords_[3*k + 2]});
+        }
+    }
+
+    //- The tets of Gmsh's mesh into result.tets, positive, through the node
+    //  index_ of readNodes; frees Gmsh's model.
+    void readTets(TetMesh& result)
+    {
+        // The peak memory of a large partition is Gmsh's model plus what is
+        // copied out of it: only the tets' node tags are asked for (no
+        // element tags), and the model is freed, its pages handed back,
+        // before the tets are built from them (24 bytes per cell less)
+        gmsh::model::mesh::preallocateElementsByType
+        (
+            4, false, true, noElementTags_, elementNodes_
+        );
+        gmsh::model::mesh::getElementsByType(4, noElementTags_, elementNodes_);
+        gmsh::model::remove();
+        ::malloc_trim(0);
+
+        result.tets.resize(elementNodes_.size()/4);
+        for (std::size_t e = 0; e < result.tets.size(); ++e)
+        {
+            tetVerts& t = result.tets[e];
+            for (int k = 0; k < 4; ++k)
+            {
+                const std::size_t tag = elementNodes_[4*e + k];
+                if (tag >= index_.size() || index_[tag] < 0)
+                {
+                    throw std::string("a tet refers to an unknown node");
+                }
+                t[k] = index_[tag];
+            }
+            const auto& P = result.points;
+            if (tetVolume6(P[t[0]], P[t[1]], P[t[2]], P[t[3]]) < 0)
+            {
+                std::swap(t[2], t[3]);
+            }
+        }
+    }
+};
+
 } // End anonymous namespace
 
 
@@ -157,137 +420,10 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
     {
         gmsh::logger::start();
         gmsh::model::add("pmshFoamPartition");
-
-        // One discrete surface per closed shell, and one volume per outer
-        // shell with its holes: a single surface loop around a surface of
-        // several shells (a partition around the body of a body-in-box
-        // domain) makes HXT fail. Node tags, not coordinates, map Gmsh's
-        // nodes back to ours: surface point surfacePointOfTag[tag - 1].
-        // Quirk: Gmsh renumbers the nodes unless their tags run 1..n
-        // without gaps, so each shell's points get the next tags in turn.
-        label nShells = 0;
-        const std::vector<label> shellOf =
-            surfaceShells(label(nSurface), surfaceTriangles, nShells);
-        std::vector<std::vector<label>> shells(nShells);
-        for (std::size_t t = 0; t < surfaceTriangles.size(); ++t)
-        {
-            shells[shellOf[t]].push_back(label(t));
-        }
-        std::vector<int> shellSurface(shells.size());
-        std::vector<std::size_t> tagOfPoint(nSurface, 0);
-        surfacePointOfTag.reserve(nSurface);
-        for (std::size_t s = 0; s < shells.size(); ++s)
-        {
-            shellSurface[s] = gmsh::model::addDiscreteEntity(2);
-            std::vector<std::size_t> tags;
-            std::vector<double> xyz;
-            std::vector<std::size_t> triangleNodes;
-            triangleNodes.reserve(3*shells[s].size());
-            for (label i : shells[s])
-            {
-                for (label p : surfaceTriangles[i])
-                {
-                    if (tagOfPoint[p] == 0)
-                    {
-                        surfacePointOfTag.push_back(p);
-                        tagOfPoint[p] = surfacePointOfTag.size();
-                        tags.push_back(tagOfPoint[p]);
-                        xyz.insert(xyz.end(), surfacePoints[p].begin(), surfacePoints[p].end());
-                    }
-                    triangleNodes.push_back(tagOfPoint[p]);
-                }
-            }
-            gmsh::model::mesh::addNodes(2, shellSurface[s], tags, xyz);
-            gmsh::model::mesh::addElementsByType(shellSurface[s], 2, {}, triangleNodes);
-        }
-
-        // Quirk: HXT leaves a discrete volume (addDiscreteEntity(3)) empty
-        // ("No elements in volume"); a built-in-kernel volume bounded by
-        // surface loops on the discrete surfaces is meshed (the first loop
-        // its outside, the others its holes), and the surface mesh is kept
-        // as it is. A shell is a hole where the volume lies outside it (its
-        // normals point into it: winding number -1 at points inside); it
-        // belongs to the smallest outer shell around it.
-        std::vector<std::size_t> outers;
-        std::vector<double> outerSize;
-        for (std::size_t s = 0; s < shells.size(); ++s)
-        {
-            double volume6 = 0;
-            for (label i : shells[s])
-            {
-                const triVerts& t = surfaceTriangles[i];
-                volume6 += dot(surfacePoints[t[0]], cross(surfacePoints[t[1]], surfacePoints[t[2]]));
-            }
-            if (volume6 > 0)
-            {
-                outers.push_back(s);
-                outerSize.push_back(volume6);
-            }
-        }
-        std::vector<std::vector<int>> loops(outers.size());
-        for (std::size_t o = 0; o < outers.size(); ++o)
-        {
-            loops[o].push_back(gmsh::model::geo::addSurfaceLoop({shellSurface[outers[o]]}));
-        }
-        for (std::size_t s = 0; s < shells.size(); ++s)
-        {
-            const bool outer = std::find(outers.begin(), outers.end(), s) != outers.end();
-            if (outer || outers.empty()) continue;
-            const point3& p = surfacePoints[surfaceTriangles[shells[s][0]][0]];
-            std::size_t owner = outers.size();
-            for (std::size_t o = 0; o < outers.size(); ++o)
-            {
-                const bool around =
-                    outers.size() == 1
-                 || windingNumber(surfacePoints, surfaceTriangles, shells[outers[o]], p) > 0.5;
-                if (around && (owner == outers.size() || outerSize[o] < outerSize[owner]))
-                {
-                    owner = o;
-                }
-            }
-            loops[owner == outers.size() ? 0 : owner].push_back
-            (
-                gmsh::model::geo::addSurfaceLoop({shellSurface[s]})
-            );
-        }
-        for (const std::vector<int>& volumeLoops : loops)
-        {
-            gmsh::model::geo::addVolume(volumeLoops);
-        }
-        gmsh::model::geo::synchronize();
-
-        gmsh::option::setNumber("Mesh.Algorithm3D", 10);       // HXT
-        // Quirk: with more than one thread, Debian's Gmsh 4.8.4 HXT now and
-        // then returns a duplicated interior node (faces matching nothing);
-        // VolumeMesher::mesh catches it and meshVolumeWithFallbacks retries
-        // with one thread
-        gmsh::option::setNumber("General.NumThreads", parameters.threads);
-        // Interior size grows from the surface edge lengths, as Netgen's,
-        // capped at the fine size (Netgen's maxh) by a constant background
-        // field. Partition interfaces are refined coarse interior faces,
-        // whose edges are up to 3x the fine size: without the cap, cells
-        // near them would be coarser than in a serial run of the same case.
-        // (The cap at 1.2x the fine size, which matches Netgen's serial cell
-        // count better, gave 25-35% fewer cells on 2-4 ranks than on one;
-        // at 1x the count varies by under 10% with the number of ranks.)
-        // Quirk: the same cap as Mesh.MeshSizeMax makes Gmsh 4.8.4 crash
-        // (SIGSEGV in hxtRefineTetrahedra) whenever it lies below the longer
-        // surface edges, which partition interfaces always have; the field
-        // gives the same sizes without the crash.
-        gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
-        const int sizeField = gmsh::model::mesh::field::add("MathEval");
-        std::ostringstream cap;
-        cap << std::setprecision(17) << parameters.maxCellSize;
-        gmsh::model::mesh::field::setString(sizeField, "F", cap.str());
-        gmsh::model::mesh::field::setAsBackgroundMesh
-        (
-            regionSizeFields(parameters.regions, parameters.maxCellSize, sizeField)
-        );
-        // Gmsh's own tet optimiser costs next to nothing and takes the
-        // worst faces from about 80 to 65 degrees; the quality pass below
-        // does the rest (bench/results/quality.md)
-        gmsh::option::setNumber("Mesh.Optimize", parameters.optimisationSteps > 0);
-        gmsh::option::setNumber("Mesh.OptimizeThreshold", 0.3);
+        hxtModel model(surfacePoints, surfaceTriangles);
+        model.addShellSurfaces(surfacePointOfTag);
+        model.addVolumes();
+        model.setMeshingOptions(parameters);
 
         reportMeshingStep
         (
@@ -298,76 +434,8 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         gmsh::model::mesh::generate(3);
         reportMeshingStep("Gmsh HXT: reading the mesh back");
 
-        std::vector<std::size_t> nodeTags;
-        std::vector<double> coords, parametric;
-        gmsh::model::mesh::getNodes(nodeTags, coords, parametric, -1, -1, false, false);
-
-        // Tags 1..nSurface are the surface points (where Gmsh put them:
-        // whether they are still where they went in is VolumeMesher::mesh's
-        // to check); new nodes follow in tag order
-        result.points = surfacePoints;
-        std::vector<std::size_t> newTags;
-        for (std::size_t k = 0; k < nodeTags.size(); ++k)
-        {
-            if (nodeTags[k] <= nSurface)
-            {
-                result.points[surfacePointOfTag[nodeTags[k] - 1]] =
-                    {coords[3*k], coords[3*k + 1], coords[3*k + 2]};
-            }
-            else
-            {
-                newTags.push_back(k);
-            }
-        }
-        std::sort
-        (
-            newTags.begin(), newTags.end(),
-            [&](std::size_t a, std::size_t b) { return nodeTags[a] < nodeTags[b]; }
-        );
-        std::size_t maxTag = nSurface;
-        for (std::size_t k : newTags) maxTag = std::max(maxTag, nodeTags[k]);
-        std::vector<label> index(maxTag + 1, -1);
-        for (std::size_t i = 0; i < nSurface; ++i) index[i + 1] = surfacePointOfTag[i];
-
-        result.points.reserve(nSurface + newTags.size());
-        for (std::size_t k : newTags)
-        {
-            index[nodeTags[k]] = label(result.points.size());
-            result.points.push_back({coords[3*k], coords[3*k + 1], coords[3*k + 2]});
-        }
-
-        // The peak memory of a large partition is Gmsh's model plus what is
-        // copied out of it: only the tets' node tags are asked for (no
-        // element tags), and the model is freed, its pages handed back,
-        // before the tets are built from them (24 bytes per cell less)
-        std::vector<std::size_t> noElementTags, elementNodes;
-        gmsh::model::mesh::preallocateElementsByType
-        (
-            4, false, true, noElementTags, elementNodes
-        );
-        gmsh::model::mesh::getElementsByType(4, noElementTags, elementNodes);
-        gmsh::model::remove();
-        ::malloc_trim(0);
-
-        result.tets.resize(elementNodes.size()/4);
-        for (std::size_t e = 0; e < result.tets.size(); ++e)
-        {
-            tetVerts& t = result.tets[e];
-            for (int k = 0; k < 4; ++k)
-            {
-                const std::size_t tag = elementNodes[4*e + k];
-                if (tag >= index.size() || index[tag] < 0)
-                {
-                    throw std::string("a tet refers to an unknown node");
-                }
-                t[k] = index[tag];
-            }
-            const auto& P = result.points;
-            if (tetVolume6(P[t[0]], P[t[1]], P[t[2]], P[t[3]]) < 0)
-            {
-                std::swap(t[2], t[3]);
-            }
-        }
+        model.readNodes(surfacePointOfTag, result);
+        model.readTets(result);
 
         gmsh::logger::stop();
     }

@@ -259,7 +259,7 @@ TEST(netgenVolumeMesher, optimisesAfterTheAdvancingFrontRecovers)
     // Netgen 6.2's MeshVolume down its failure path ("Call remove
     // problem"), which leaves the tets flagged fixed: the optimiser then
     // removed no cells, 5931 tets instead of 4421 (4001-4069 for the same
-    // surface with its points shuffled). See netgenInterface.C.
+    // surface with its points shuffled). See src/netgen/netgenSurfaceVolumeMesh.C.
     auto g = Geometry::New
     (
         std::string(PMSH_SOURCE_DIR) + "/tutorials/sphereSTL/constant/geometry/sphere.stl"

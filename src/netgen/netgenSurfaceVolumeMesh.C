@@ -1,0 +1,127 @@
+/*---------------------------------------------------------------------------*\
+  pmshFoam: Netgen's volume mesh of a closed triangulated surface, the
+  per-partition mesher of stage 4 (see netgenInterface.H).
+
+  Netgen quirk handled here: when the advancing front fails after the
+  Delaunay fill ("Call remove problem"), MeshVolume leaves nearly every tet
+  flagged fixed, and the volume optimisation then removes no cells
+  (1.2-1.8x as many; which surfaces take that path depends on the point
+  order: 1 of 7 partition surfaces at r = 3 and 3 of 96 at r = 2 in the
+  tutorials): the flags are cleared before it.
+\*---------------------------------------------------------------------------*/
+
+#include "netgenMeshConversion.H"
+#include "pmshError.H"
+
+// * * * * * * * * * * * * * Volume of a closed surface  * * * * * * * * * * //
+
+pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
+(
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles,
+    const meshParameters& parameters,
+    const std::string& what
+)
+{
+    const char* function = "pmsh::ng::surfaceVolumeMesh";
+    const label nPoints = label(points.size());
+
+    // An element larger than the domain is meaningless, and Netgen's local
+    // size tree does not need 1e300
+    const double diagonal = boundingBoxDiagonal(points);
+    meshParameters p = parameters;
+    if (!(p.maxh < diagonal))
+    {
+        p.maxh = diagonal;
+    }
+
+    netgenSession session;
+
+    nglibMeshGuard guard(nglib::Ng_NewMesh());
+    nglib::Ng_Mesh* mesh = guard.mesh;
+
+    for (const point3& x : points)
+    {
+        double xyz[3] = {x[0], x[1], x[2]};
+        nglib::Ng_AddPoint(mesh, xyz);
+    }
+    for (const triVerts& t : triangles)
+    {
+        // 1-based; Ng_NewMesh's face descriptor has DomainIn 1, DomainOut 0:
+        // triangles must point outward (right-hand rule)
+        int pi[3] = {int(t[0] + 1), int(t[1] + 1), int(t[2] + 1)};
+        nglib::Ng_AddSurfaceElement(mesh, nglib::NG_TRIG, pi);
+    }
+
+    // Transfer_Parameters copies these into the global netgen::mparam;
+    // fineness, closeedge*, minedgelen* and opt*meshenable are ignored
+    nglib::Ng_Meshing_Parameters mp;
+    mp.maxh = p.maxh;
+    mp.grading = p.grading;
+    mp.optsteps_3d = p.optimisationSteps;
+
+    try
+    {
+        // Ng_GenerateVolumeMesh's steps, with the fixed flags cleared
+        // before the optimisation. Failures are exceptions, e.g. "Stop
+        // meshing since surface mesh not consistent" (open or badly
+        // oriented) or "Stop meshing since too many attempts" (inverted)
+        mp.Transfer_Parameters();
+        netgen::Mesh& volume = *reinterpret_cast<netgen::Mesh*>(mesh);
+        volume.CalcLocalH(netgen::mparam.grading);
+        restrictLocalSizes(volume, p);
+        netgen::MeshVolume(netgen::mparam, volume);
+        netgen::RemoveIllegalElements(volume);
+        for (netgen::Element& tet : volume.VolumeElements())
+        {
+            // Quirk: left set by MeshVolume's failure path ("Call remove
+            // problem": FreeOpenElementsEnvironment), they stop the
+            // optimiser from touching the tet
+            tet.flags.fixed = false;
+        }
+        netgen::OptimizeVolume(netgen::mparam, volume);
+    }
+    catch (const std::exception& e)
+    {
+        throw FatalError
+        (
+            msg()
+                << "Netgen failed to mesh the volume of " << what << " ("
+                << nPoints << " points, " << triangles.size()
+                << " triangles): " << exceptionText(e) << session.tail(),
+            function
+        );
+    }
+    catch (...)
+    {
+        throw FatalError
+        (
+            msg()
+                << "Netgen failed to mesh the volume of " << what
+                << " with an unknown exception" << session.tail(),
+            function
+        );
+    }
+
+    // Ng_GenerateVolumeMesh's steps report no failure but an empty mesh
+    if (nglib::Ng_GetNE(mesh) == 0)
+    {
+        throw FatalError
+        (
+            msg()
+                << "Netgen failed to mesh the volume of " << what << ": no tets"
+                << session.tail(),
+            function
+        );
+    }
+
+    // The contract (surface points kept in place and in order, the surface
+    // triangles faces of the tets) is VolumeMesher::mesh's to check
+    volumeMesh m;
+    readNglibMesh(mesh, m, what);
+    makeTetsPositive(m, what);
+
+    return m;
+}
+
+// ************************************************************************* //
