@@ -206,11 +206,86 @@ bool pmsh::qualityPass::passMesh::flip(label t)
         }
     }
 
+    if (bestOld.empty() && isSliver && !movable && insertPoints)
+    {
+        return insertPoint(t);
+    }
     if (bestOld.empty())
     {
         return false;
     }
     replace(bestOld, bestNew);
+    return true;
+}
+
+
+bool pmsh::qualityPass::passMesh::insertPoint(label t)
+{
+    // A flat tet between two coplanar surface triangles (an STL facet, a
+    // planar interface) with every point fixed: no flip mends it when the
+    // ring around its interior edge does not see across it. A new point
+    // at the centre of the ring, joined to every face of the ring's
+    // cavity, does: each ring tet gives two, one end of the edge replaced
+    // by the point (so they keep the ring tets' orientation)
+    const tetVerts c = tets_[t];
+    static const int edges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+    std::vector<label> bestOld;
+    std::vector<tetVerts> bestNew;
+    std::vector<double> bestBadness;
+    point3 bestPoint{0, 0, 0};
+    for (const auto& e : edges)
+    {
+        const label a = c[e[0]];
+        const label b = c[e[1]];
+        std::vector<label> ring;
+        for (label i = start_[a]; i < start_[a + 1]; ++i)
+        {
+            if (has(pointTets_[i], b)) ring.push_back(pointTets_[i]);
+        }
+        if (ringPoints(ring, a, b).empty()) continue;
+        bool allCurrent = true;
+        for (label u : ring) allCurrent = allCurrent && current(u);
+        if (!allCurrent) continue;
+
+        point3 centre{0, 0, 0};
+        for (label u : ring)
+        {
+            for (label q : tets_[u]) centre = centre + points_[q];
+        }
+        centre = (1.0/(4*ring.size()))*centre;
+
+        const label p = label(points_.size());
+        std::vector<tetVerts> created;
+        for (label u : ring)
+        {
+            for (const label end : {a, b})
+            {
+                tetVerts n = tets_[u];
+                for (label& q : n) if (q == end) q = p;
+                created.push_back(n);
+            }
+        }
+        points_.push_back(centre);
+        std::vector<double> badness;
+        const bool wins = improves(ring, created, badness)
+         && (bestOld.empty() || better(badness, bestBadness));
+        points_.pop_back();
+        if (wins)
+        {
+            bestOld = ring;
+            bestNew = created;
+            bestBadness = badness;
+            bestPoint = centre;
+        }
+    }
+    if (bestOld.empty())
+    {
+        return false;
+    }
+    points_.push_back(bestPoint);
+    locked_.push_back(1);
+    replace(bestOld, bestNew);
+    ++nInserted;
     return true;
 }
 
