@@ -56,11 +56,14 @@ qualityPassStats runSteps
     {
         const std::vector<std::pair<double, label>> visit = tetsToVisit(m, faceBadness);
         if (visit.empty()) break;
+        const label changesBefore = m.nFlips + m.nMoved;
         for (const auto& v : visit)
         {
             m.improve(v.second);
         }
         m.rebuild();
+        // A step that changed nothing would be repeated exactly
+        if (m.nFlips + m.nMoved == changesBefore) break;
     }
     stats.worstAfter = m.worstFaces();
     stats.nVisited = m.nVisited;
