@@ -10,18 +10,20 @@ namespace
 
 using namespace pmsh;
 
-//- The tets one step visits, worst first: the slivers, and the tets on
-//  both sides of the faces worse than `faceBadness`.
+//- The tets one step visits, worst first: the slivers worse than
+//  `sliverBadness`, and the tets on both sides of the faces worse than
+//  `faceBadness`.
 std::vector<std::pair<double, label>> tetsToVisit
 (
     const qualityPass::passMesh& m,
+    const double sliverBadness,
     const double faceBadness
 )
 {
     std::vector<std::pair<double, label>> visit;
     for (label t = 0; t < m.nTets(); ++t)
     {
-        if (m.sliver(t) > 0)
+        if (m.sliver(t) > sliverBadness)
         {
             visit.push_back({m.sliver(t), t});
         }
@@ -40,12 +42,13 @@ std::vector<std::pair<double, label>> tetsToVisit
 }
 
 
-//- Up to `steps` steps, each visiting tetsToVisit(m, faceBadness); stops
-//  early when there is nothing left to visit.
+//- Up to `steps` steps, each visiting tetsToVisit(m, sliverBadness,
+//  faceBadness); stops early when there is nothing left to visit.
 qualityPassStats runSteps
 (
     qualityPass::passMesh& m,
     const int steps,
+    const double sliverBadness,
     const double faceBadness
 )
 {
@@ -54,7 +57,7 @@ qualityPassStats runSteps
     stats.worstBefore = m.worstFaces();
     for (int step = 0; step < steps; ++step)
     {
-        const std::vector<std::pair<double, label>> visit = tetsToVisit(m, faceBadness);
+        const std::vector<std::pair<double, label>> visit = tetsToVisit(m, sliverBadness, faceBadness);
         if (visit.empty()) break;
         const label changesBefore = m.nFlips + m.nMoved;
         for (const auto& v : visit)
@@ -88,7 +91,7 @@ pmsh::qualityPassStats pmsh::improveWorstCells
 )
 {
     qualityPass::passMesh m(mesh, nFixedPoints, triangles, interface);
-    return runSteps(m, steps, qualityPass::visitBadness);
+    return runSteps(m, steps, 0, qualityPass::visitBadness);
 }
 
 
@@ -102,7 +105,10 @@ pmsh::qualityPassStats pmsh::removeSlivers
 {
     qualityPass::passMesh m(mesh, nFixedPoints, triangles, interface);
     m.insertPoints = true;
-    return runSteps(m, sliverRemovalSteps, qualityPass::rejectBadness);
+    return runSteps
+    (
+        m, sliverRemovalSteps, qualityPass::rejectSliverBadness, qualityPass::rejectBadness
+    );
 }
 
 
