@@ -43,18 +43,21 @@ std::vector<std::pair<double, label>> tetsToVisit
 
 
 //- Up to `steps` steps, each visiting tetsToVisit(m, sliverBadness,
-//  faceBadness); stops early when there is nothing left to visit.
+//  faceBadness); stops early when there is nothing left to visit. The
+//  worst faces before and after are measured if measureWorst (each a scan
+//  of every face).
 qualityPassStats runSteps
 (
     qualityPass::passMesh& m,
     const int steps,
     const double sliverBadness,
-    const double faceBadness
+    const double faceBadness,
+    const bool measureWorst
 )
 {
     qualityPassStats stats;
     m.rebuild();
-    stats.worstBefore = m.worstFaces();
+    if (measureWorst) stats.worstBefore = m.worstFaces();
     for (int step = 0; step < steps; ++step)
     {
         const std::vector<std::pair<double, label>> visit = tetsToVisit(m, sliverBadness, faceBadness);
@@ -68,7 +71,7 @@ qualityPassStats runSteps
         // A step that changed nothing would be repeated exactly
         if (m.nFlips + m.nMoved == changesBefore) break;
     }
-    stats.worstAfter = m.worstFaces();
+    if (measureWorst) stats.worstAfter = m.worstFaces();
     stats.nVisited = m.nVisited;
     stats.nMoved = m.nMoved;
     stats.nFlips = m.nFlips;
@@ -91,7 +94,7 @@ pmsh::qualityPassStats pmsh::improveWorstCells
 )
 {
     qualityPass::passMesh m(mesh, nFixedPoints, triangles, interface);
-    return runSteps(m, steps, 0, qualityPass::visitBadness);
+    return runSteps(m, steps, 0, qualityPass::visitBadness, true);
 }
 
 
@@ -107,7 +110,8 @@ pmsh::qualityPassStats pmsh::removeSlivers
     m.insertPoints = true;
     return runSteps
     (
-        m, sliverRemovalSteps, qualityPass::rejectSliverBadness, qualityPass::rejectBadness
+        m, sliverRemovalSteps, qualityPass::rejectSliverBadness, qualityPass::rejectBadness,
+        false
     );
 }
 
