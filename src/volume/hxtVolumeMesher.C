@@ -460,7 +460,8 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
     }
 
     // HXT's worst cells are far worse than Netgen's: improve them, with
-    // the partition's surface fixed
+    // the partition's surface fixed; with no steps, remove only the slivers
+    // that checkMesh (and the contract) would refuse
     if (parameters.optimisationSteps > 0)
     {
         reportMeshingStep
@@ -473,6 +474,11 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
             result, label(nSurface), surfaceTriangles,
             parameters.interfaceTriangles, parameters.optimisationSteps
         );
+    }
+    else
+    {
+        reportMeshingStep("sliver removal on " + std::to_string(result.tets.size()) + " cells");
+        removeSlivers(result, label(nSurface), surfaceTriangles, parameters.interfaceTriangles);
     }
 
     return result;

@@ -80,38 +80,59 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
     // optimiser changed; with a tighter interior size; then the other
     // meshers. Netgen's optimiser is where most of its rare crashes and
     // hangs live, so its retry goes without it; HXT's quality pass is what
-    // removes the slivers the contract refuses, so its retry has more steps
+    // removes the slivers the contract refuses, so its retry has more steps.
+    // Asked for no steps (speed first), the first attempt was the one
+    // without optimiser: the later ones have the default steps, as a mesh
+    // that failed without them fails again the same way
     const VolumeMesher* first = meshers.at(0).get();
     std::vector<ladderAttempt<volumeAttempt>> attempts{{{first, parameters}, ""}};
-    volumeMeshParameters p = parameters;
+    const auto addAttempt = [&](const VolumeMesher* mesher, const volumeMeshParameters& p, const std::string& change)
+    {
+        for (const ladderAttempt<volumeAttempt>& a : attempts)
+        {
+            const volumeMeshParameters& q = a.parameters.parameters;
+            if
+            (
+                a.parameters.mesher == mesher && q.threads == p.threads
+             && q.optimisationSteps == p.optimisationSteps && q.grading == p.grading
+            )
+            {
+                return;
+            }
+        }
+        attempts.push_back({{mesher, p}, change});
+    };
+    const bool stepsAsked = parameters.optimisationSteps > 0;
+    volumeMeshParameters retry = parameters;
+    retry.optimisationSteps =
+        stepsAsked ? parameters.optimisationSteps : volumeMeshParameters().optimisationSteps;
+    const std::string stepsAdded =
+        stepsAsked ? "" : "optimisationSteps " + std::to_string(retry.optimisationSteps);
+
+    volumeMeshParameters p = retry;
     if (p.threads > 1)
     {
         // Gmsh 4.8's multithreaded HXT can duplicate interior points
         p.threads = 1;
-        attempts.push_back({{first, p}, "1 thread"});
+        addAttempt(first, p, "1 thread" + (stepsAsked ? "" : ", " + stepsAdded));
     }
-    if (p.optimisationSteps > 0)
+    if (stepsAsked)
     {
         p.optimisationSteps = first->optimiserMayFail() ? 0 : 2*p.optimisationSteps;
-        attempts.push_back
-        (
-            {{first, p}, "optimisationSteps " + std::to_string(p.optimisationSteps)}
-        );
     }
+    addAttempt(first, p, "optimisationSteps " + std::to_string(p.optimisationSteps));
     p.grading = std::min(p.grading, 0.2);
-    attempts.push_back
+    addAttempt
     (
-        {
-            {first, p},
-            "optimisationSteps " + std::to_string(p.optimisationSteps)
-          + ", grading <= 0.2"
-        }
+        first, p,
+        "optimisationSteps " + std::to_string(p.optimisationSteps) + ", grading <= 0.2"
     );
     for (std::size_t m = 1; m < meshers.size(); ++m)
     {
-        attempts.push_back
+        addAttempt
         (
-            {{meshers[m].get(), parameters}, "the " + meshers[m]->name() + " backend"}
+            meshers[m].get(), retry,
+            "the " + meshers[m]->name() + " backend" + (stepsAsked ? "" : ", " + stepsAdded)
         );
     }
 

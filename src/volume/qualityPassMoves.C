@@ -45,9 +45,15 @@ bool pmsh::qualityPass::passMesh::improves
 }
 
 
-std::vector<pmsh::label> pmsh::qualityPass::passMesh::ringPoints(const std::vector<label>& ring, label a, label b) const
+std::vector<pmsh::label> pmsh::qualityPass::passMesh::ringPoints
+(
+    const std::vector<label>& ring,
+    label a,
+    label b,
+    std::size_t maxSize
+) const
 {
-    if (ring.size() < 3 || ring.size() > 6) return {};
+    if (ring.size() < 3 || ring.size() > maxSize) return {};
     std::vector<std::array<label, 2>> pairs;
     for (label u : ring)
     {
@@ -206,11 +212,92 @@ bool pmsh::qualityPass::passMesh::flip(label t)
         }
     }
 
+    if (bestOld.empty() && isSliver && insertPoints)
+    {
+        return insertPoint(t);
+    }
     if (bestOld.empty())
     {
         return false;
     }
     replace(bestOld, bestNew);
+    return true;
+}
+
+
+bool pmsh::qualityPass::passMesh::insertPoint(label t)
+{
+    // A flat tet between two coplanar surface triangles (an STL facet, a
+    // planar interface), its points fixed: no flip mends it when the ring
+    // around its interior edge does not see across it. A new point inside
+    // the ring, joined to every face of the ring's cavity, does: each ring
+    // tet gives two, one end of the edge replaced by the point (so they
+    // keep the ring tets' orientation)
+    const tetVerts c = tets_[t];
+    static const int edges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+    std::vector<label> bestOld;
+    std::vector<tetVerts> bestNew;
+    std::vector<double> bestBadness;
+    point3 bestPoint{0, 0, 0};
+    for (const auto& e : edges)
+    {
+        const label a = c[e[0]];
+        const label b = c[e[1]];
+        std::vector<label> ring;
+        for (label i = start_[a]; i < start_[a + 1]; ++i)
+        {
+            if (has(pointTets_[i], b)) ring.push_back(pointTets_[i]);
+        }
+        const std::vector<label> polygon = ringPoints(ring, a, b, maxInsertionRing);
+        if (polygon.empty()) continue;
+        bool allCurrent = true;
+        for (label u : ring) allCurrent = allCurrent && current(u);
+        if (!allCurrent) continue;
+
+        // Where the point goes: on the way from the edge's middle to the
+        // centre of the ring's polygon (a flat ring may see its faces
+        // only from near the edge)
+        point3 polygonCentre{0, 0, 0};
+        for (label q : polygon) polygonCentre = polygonCentre + points_[q];
+        polygonCentre = (1.0/polygon.size())*polygonCentre;
+        const point3 edgeMiddle = 0.5*(points_[a] + points_[b]);
+
+        const label p = label(points_.size());
+        std::vector<tetVerts> created;
+        for (label u : ring)
+        {
+            for (const label end : {a, b})
+            {
+                tetVerts n = tets_[u];
+                for (label& q : n) if (q == end) q = p;
+                created.push_back(n);
+            }
+        }
+        for (const double f : {0.5, 0.25, 0.75, 0.1})
+        {
+            const point3 x = edgeMiddle + f*(polygonCentre - edgeMiddle);
+            points_.push_back(x);
+            std::vector<double> badness;
+            const bool wins = improves(ring, created, badness)
+             && (bestOld.empty() || better(badness, bestBadness));
+            points_.pop_back();
+            if (wins)
+            {
+                bestOld = ring;
+                bestNew = created;
+                bestBadness = badness;
+                bestPoint = x;
+            }
+        }
+    }
+    if (bestOld.empty())
+    {
+        return false;
+    }
+    points_.push_back(bestPoint);
+    locked_.push_back(1);
+    replace(bestOld, bestNew);
+    ++nInserted;
     return true;
 }
 

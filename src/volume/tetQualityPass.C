@@ -3,6 +3,85 @@
 
 #include <algorithm>
 
+// * * * * * * * * * * * * * * * Local Functions  * * * * * * * * * * * * * //
+
+namespace
+{
+
+using namespace pmsh;
+
+//- The tets one step visits, worst first: the slivers worse than
+//  `sliverBadness`, and the tets on both sides of the faces worse than
+//  `faceBadness`.
+std::vector<std::pair<double, label>> tetsToVisit
+(
+    const qualityPass::passMesh& m,
+    const double sliverBadness,
+    const double faceBadness
+)
+{
+    std::vector<std::pair<double, label>> visit;
+    for (label t = 0; t < m.nTets(); ++t)
+    {
+        if (m.sliver(t) > sliverBadness)
+        {
+            visit.push_back({m.sliver(t), t});
+        }
+        for (int k = 0; k < 4; ++k)
+        {
+            const double b = m.faceBadness(t, k);
+            if (b > faceBadness)
+            {
+                visit.push_back({b, t});
+                if (m.across(t, k) >= 0) visit.push_back({b, m.across(t, k)});
+            }
+        }
+    }
+    std::sort(visit.rbegin(), visit.rend());
+    return visit;
+}
+
+
+//- Up to `steps` steps, each visiting tetsToVisit(m, sliverBadness,
+//  faceBadness); stops early when there is nothing left to visit. The
+//  worst faces before and after are measured if measureWorst (each a scan
+//  of every face).
+qualityPassStats runSteps
+(
+    qualityPass::passMesh& m,
+    const int steps,
+    const double sliverBadness,
+    const double faceBadness,
+    const bool measureWorst
+)
+{
+    qualityPassStats stats;
+    m.rebuild();
+    if (measureWorst) stats.worstBefore = m.worstFaces();
+    for (int step = 0; step < steps; ++step)
+    {
+        const std::vector<std::pair<double, label>> visit = tetsToVisit(m, sliverBadness, faceBadness);
+        if (visit.empty()) break;
+        const label changesBefore = m.nFlips + m.nMoved;
+        for (const auto& v : visit)
+        {
+            m.improve(v.second);
+        }
+        m.rebuild();
+        // A step that changed nothing would be repeated exactly
+        if (m.nFlips + m.nMoved == changesBefore) break;
+    }
+    if (measureWorst) stats.worstAfter = m.worstFaces();
+    stats.nVisited = m.nVisited;
+    stats.nMoved = m.nMoved;
+    stats.nFlips = m.nFlips;
+    stats.nInserted = m.nInserted;
+    return stats;
+}
+
+} // End anonymous namespace
+
+
 // * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * //
 
 pmsh::qualityPassStats pmsh::improveWorstCells
@@ -15,44 +94,25 @@ pmsh::qualityPassStats pmsh::improveWorstCells
 )
 {
     qualityPass::passMesh m(mesh, nFixedPoints, triangles, interface);
-    qualityPassStats stats;
+    return runSteps(m, steps, 0, qualityPass::visitBadness, true);
+}
 
-    m.rebuild();
-    stats.worstBefore = m.worstFaces();
-    for (int step = 0; step < steps; ++step)
-    {
-        // The tets of the bad faces, worst first
-        std::vector<std::pair<double, label>> visit;
-        for (label t = 0; t < m.nTets(); ++t)
-        {
-            if (m.sliver(t) > 0)
-            {
-                visit.push_back({m.sliver(t), t});
-            }
-            for (int k = 0; k < 4; ++k)
-            {
-                const double b = m.faceBadness(t, k);
-                if (b > qualityPass::visitBadness)
-                {
-                    visit.push_back({b, t});
-                    if (m.across(t, k) >= 0) visit.push_back({b, m.across(t, k)});
-                }
-            }
-        }
-        if (visit.empty()) break;
-        std::sort(visit.rbegin(), visit.rend());
-        for (const auto& v : visit)
-        {
-            m.improve(v.second);
-        }
-        m.rebuild();
-    }
 
-    stats.worstAfter = m.worstFaces();
-    stats.nVisited = m.nVisited;
-    stats.nMoved = m.nMoved;
-    stats.nFlips = m.nFlips;
-    return stats;
+pmsh::qualityPassStats pmsh::removeSlivers
+(
+    TetMesh& mesh,
+    const label nFixedPoints,
+    const std::vector<triVerts>& triangles,
+    const std::vector<char>& interface
+)
+{
+    qualityPass::passMesh m(mesh, nFixedPoints, triangles, interface);
+    m.insertPoints = true;
+    return runSteps
+    (
+        m, sliverRemovalSteps, qualityPass::rejectSliverBadness, qualityPass::rejectBadness,
+        false
+    );
 }
 
 

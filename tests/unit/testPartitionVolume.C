@@ -123,6 +123,56 @@ TEST(partitionVolume, retriesWithoutARiskyOptimiserAndWithMoreOfACuringOne)
     EXPECT_TRUE(VolumeMesher::New("netgen")->optimiserMayFail());
 }
 
+TEST(partitionVolume, aFailureWithoutStepsIsRetriedWithStepsNeverTheSameWay)
+{
+    // optimisationSteps 0 asks for speed; a mesh that failed without steps
+    // fails again without them, so every retry and the fallback have the
+    // default steps, say so, and no attempt repeats an earlier one
+    struct curingOptimiserMesher : failingMesher
+    {
+        bool optimiserMayFail() const override { return false; }
+    };
+    const closedSurface sphere = icosphere(1);
+    volumeMeshParameters p = partitionNamed("partition 1");
+    p.optimisationSteps = 0;
+    const auto failuresOf = [&](std::unique_ptr<VolumeMesher> m)
+    {
+        return errorOf([&]
+        {
+            meshVolumeWithFallbacks
+            (
+                meshers(std::move(m), std::make_unique<crashingMesher>()),
+                sphere.points, sphere.triangles, p,
+                tempFile("failedPartition1.stl"), ""
+            );
+        });
+    };
+    const int defaultSteps = volumeMeshParameters().optimisationSteps;
+    ASSERT_GT(defaultSteps, 0);
+    const std::string steps = "optimisationSteps " + std::to_string(defaultSteps);
+    for (const std::string& m :
+        {
+            failuresOf(std::make_unique<failingMesher>()),
+            failuresOf(std::make_unique<curingOptimiserMesher>())
+        })
+    {
+        EXPECT_HAS(m, "failed in all 4 attempts");
+        EXPECT_HAS(m, "attempt 1 (failing): cannot mesh");
+        EXPECT_HAS(m, "attempt 2 (failing; " + steps + "): cannot mesh");
+        EXPECT_HAS(m, "attempt 3 (failing; " + steps + ", grading <= 0.2): cannot mesh");
+        EXPECT_HAS(m, "attempt 4 (crashing; the crashing backend, " + steps + ")");
+    }
+
+    // With threads, the single-threaded retry has the steps too; a grading
+    // already at most 0.2 makes no attempt of its own
+    p.threads = 2;
+    p.grading = 0.1;
+    const std::string m = failuresOf(std::make_unique<failingMesher>());
+    EXPECT_HAS(m, "failed in all 3 attempts");
+    EXPECT_HAS(m, "attempt 2 (failing; 1 thread, " + steps + "): cannot mesh");
+    EXPECT_HAS(m, "attempt 3 (crashing; the crashing backend, " + steps + ")");
+}
+
 TEST(partitionVolume, aFailingMesherFallsBackToTheNextOne)
 {
     const closedSurface sphere = icosphere(2);

@@ -3,6 +3,7 @@
 // boundary kept bit for bit, the tets positive and conforming.
 
 #include "tetQualityPass.H"
+#include "tetShape.H"
 #include "tetFaceMatching.H"
 #include "Geometry.H"
 #include "meshPatch.H"
@@ -314,6 +315,59 @@ TEST(tetQualityPass, removesASliverWithAllItsPointsFixed)
     {
         const point3* p[4] = {&m.points[c[0]], &m.points[c[1]], &m.points[c[2]], &m.points[c[3]]};
         EXPECT_GT(tetVolume6(*p[0], *p[1], *p[2], *p[3]), 0.1);
+    }
+}
+
+
+TEST(tetQualityPass, sliverRemovalRemovesASliverAndLeavesFairCellsAlone)
+{
+    // optimisationSteps 0: the sliver above (aspect ratio far above the
+    // 1000 checkMesh accepts) goes, as with a step of the pass
+    {
+        TetMesh m;
+        const double h = 1e-7;
+        m.points =
+        {
+            {0, 0, h}, {1, 0, -h}, {1, 1, h}, {0, 1, -h},
+            {0.5, 0.5, 1}, {0.5, 0.5, -1}
+        };
+        m.tets = {{0, 1, 2, 3}, {4, 0, 1, 2}, {4, 0, 2, 3}, {5, 1, 3, 0}, {5, 1, 3, 2}};
+        orientPositive(m);
+        const std::vector<triVerts> triangles = boundaryOf(m);
+        const std::vector<point3> before = m.points;
+        ASSERT_GT(tetShapeRangeOf(m).maxAspectRatio, maxAcceptedAspectRatio);
+
+        const qualityPassStats stats = removeSlivers(m, 6, triangles, {});
+
+        expectValid(m, before, 6, triangles);
+        EXPECT_EQ(stats.nFlips, 1);
+        EXPECT_LE(tetShapeRangeOf(m).maxAspectRatio, maxAcceptedAspectRatio);
+    }
+
+    // A cube's star around an interior point off its centre: faces the
+    // pass's steps make better (about 60 degrees), but that checkMesh
+    // accepts: sliver removal leaves them as they are
+    {
+        TetMesh m;
+        m.points = cubeCorners();
+        m.points.push_back({0.12, 0.15, 0.1});
+        const std::vector<triVerts> triangles = cubeTriangles();
+        for (const triVerts& f : triangles)
+        {
+            m.tets.push_back({f[0], f[2], f[1], 8});
+        }
+        const TetMesh original = m;
+        const double worst = checkMeshMeasuresOf(m).maxNonOrthogonality;
+        ASSERT_GT(worst, 50);
+        ASSERT_LT(worst, 75);
+
+        const qualityPassStats stats = removeSlivers(m, 8, triangles, {});
+        EXPECT_EQ(stats.nMoved + stats.nFlips, 0);
+        EXPECT_EQ(m.points, original.points);
+        EXPECT_EQ(m.tets, original.tets);
+
+        TetMesh improved = original;
+        EXPECT_GT(improveWorstCells(improved, 8, triangles, {}, 3).nMoved, 0);
     }
 }
 
