@@ -75,21 +75,33 @@ runFigures gatherFigures
     using namespace pmsh;
     runFigures f;
     f.total = stages.total();
-    f.memory = comm.allGather(double(peakMemoryBytes()));
-    f.cellsPerRank = comm.allGather(double(volume.nCells));
-    f.attemptsPerRank = comm.allGather(double(volume.attempts));
     f.traffic = comm.traffic();
-    f.messagesPerRank = comm.allGather(f.traffic.messages);
-    f.bytesSentPerRank = comm.allGather(f.traffic.bytes);
     f.backends = VolumeMesher::names();
-    f.backendPerRank = comm.allGather
-    (
+
+    // One collective for this rank's figures, as meshQuality gathers its own
+    struct rankRun
+    {
+        double memory, cells, attempts, messages, bytesSent, backend;
+    };
+    const rankRun mine
+    {
+        double(peakMemoryBytes()), double(volume.nCells), double(volume.attempts),
+        f.traffic.messages, f.traffic.bytes,
         double
         (
             std::find(f.backends.begin(), f.backends.end(), volume.backend)
           - f.backends.begin()
         )
-    );
+    };
+    for (const rankRun& r : comm.allGather(mine))
+    {
+        f.memory.push_back(r.memory);
+        f.cellsPerRank.push_back(r.cells);
+        f.attemptsPerRank.push_back(r.attempts);
+        f.messagesPerRank.push_back(r.messages);
+        f.bytesSentPerRank.push_back(r.bytesSent);
+        f.backendPerRank.push_back(r.backend);
+    }
     f.memoryBytes = minAvgMaxOf(f.memory);
 
     // The paper's split: the coarse mesh, then everything up to the fine
