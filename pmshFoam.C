@@ -70,6 +70,7 @@ Usage
 #include "fineMeshForecast.H"
 #include "Geometry.H"
 #include "globalNumbering.H"
+#include "layerStage.H"
 #include "memoryEstimate.H"
 #include "meshSettings.H"
 #include "partitionCoarseMesh.H"
@@ -112,6 +113,81 @@ using namespace Foam;
     UPstream::exit(0);
     std::exit(0);
 }
+
+// Stage 3b, where a patch asks for prism layers: the stacks on this rank's
+// fine surface, and their report for the log and summary.json.
+static pmsh::wallLayers layerStage
+(
+    const pmsh::Communicator& comm,
+    pmsh::stageLog& stages,
+    const pmsh::CoarseMesh& coarse,
+    const std::vector<pmsh::label>& cellPart,
+    const pmsh::FineSurface& surface,
+    const std::map<pmsh::label, pmsh::layerSpecification>& specs,
+    const pmsh::meshSettings& settings,
+    pmsh::layerReport& report
+)
+{
+    pmsh::wallLayers layers;
+    if (specs.empty())
+    {
+        return layers;
+    }
+    stages.begin("layers", "Stage 3b: prism layers");
+    pmsh::failTogether(comm, [&]
+    {
+        layers = pmsh::growLayers
+        (
+            comm, coarse, cellPart, surface, specs, settings.refinementLevels
+        );
+    });
+    report = pmsh::reportLayers(comm, layers, surface, coarse, specs);
+    stages.end();
+    return layers;
+}
+
+
+// Stage 7: the rank's mesh, its fields and procAddressing, committed
+// once every rank has written; the decomposeParDict of a parallel run.
+static pmsh::writtenMesh writeStage
+(
+    const pmsh::Communicator& comm,
+    pmsh::stageLog& stages,
+    const pmsh::caseControl& control,
+    const pmsh::caseInputs& inputs,
+    pmsh::rankTets& share,
+    const pmsh::CoarseMesh& coarse,
+    const std::vector<std::array<pmsh::label, 2>>& zonePairs,
+    const pmsh::partitionVolumeResult& volume,
+    const std::vector<pmsh::fieldTemplate>& fieldTemplates,
+    const Time& runTime,
+    pmsh::caseOutput& output
+)
+{
+    stages.begin
+    (
+        "write",
+        "Stage 7: writing "
+      + std::string(runTime.writeFormat() == IOstream::BINARY ? "binary" : "ascii")
+      + " through the " + std::string(control.outputFileHandler) + " fileHandler"
+    );
+    const pmsh::writtenMesh written = pmsh::writeRankMesh
+    (
+        comm, share, coarse, zonePairs, volume, fieldTemplates,
+        control.outputFileHandler, output
+    );
+    output.commit();
+    if (comm.parallel())
+    {
+        pmsh::writeDecomposeParDict(runTime, inputs.decomposition);
+    }
+    pmsh::logWritten(comm, runTime.globalPath(), written.sizes);
+    pmsh::logMeshQuality(comm, written.quality);
+    stages.end();
+
+    return written;
+}
+
 
 // The stages of the PMSH method, from the case's inputs to the written
 // mesh and the summary. A failure stops every rank together
@@ -165,10 +241,12 @@ static void meshCase
     (
         comm, coarse, settings, !pmsh::foam::found(args, "noMemoryCheck")
     );
+    std::map<pmsh::label, pmsh::layerSpecification> layerSpecs;
     pmsh::failTogether(comm, [&]
     {
         // The patches are known now: every field must cover them all
         pmsh::checkPatchCoverage(fieldTemplates, coarse.patches);
+        layerSpecs = pmsh::layerSpecsOf(settings, coarse);
     });
     stages.end();
 
@@ -198,14 +276,21 @@ static void meshCase
         pmsh::logProjectionRepair(comm, surface.repair);
     stages.end();
 
+    pmsh::layerReport layerReport;
+    const pmsh::wallLayers layers =
+        layerStage(comm, stages, coarse, cellPart, surface, layerSpecs, settings, layerReport);
+
     stages.begin("volume", "Stage 4: volume meshing (" + settings.volumeMesher + ")");
     pmsh::partitionVolumeResult volume;
+    // With layers the mesher fills the surface lifted to their tops
+    const std::vector<pmsh::point3> lifted = pmsh::liftedSurfacePoints(layers, surface.points);
     pmsh::failTogether(comm, [&]
     {
         volume = pmsh::meshVolumeByZone
         (
             pmsh::VolumeMesher::NewAll(settings.volumeMesher),
-            surface.points, surface.triangles, surface.zone, coarse.zones,
+            lifted.empty() ? surface.points : lifted,
+            surface.triangles, surface.zone, coarse.zones,
             pmsh::volumeParameters(settings, surface, comm.rank()),
             pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank()),
             "Try a smaller maxCellSize (a finer coarse mesh) or another"
@@ -213,13 +298,18 @@ static void meshCase
         );
     });
     const pmsh::TetMesh& tets = volume.mesh;
-    const std::int64_t nFineCells = pmsh::logVolumeMeshing(comm, volume);
+    const std::int64_t nFineCells =
+        pmsh::logVolumeMeshing(comm, volume) + std::int64_t(layerReport.prisms);
     stages.end();
 
     stages.begin("numbering", "Stage 5: global point numbering");
     pmsh::globalPointNumbering numbering
     (
         comm, coarse, cellPart, surface, pmsh::label(tets.points.size())
+    );
+    const pmsh::layerPointList layerPoints = pmsh::numberLayerPoints
+    (
+        comm, coarse, cellPart, surface, layers, !layerSpecs.empty(), numbering
     );
     const pmsh::label nCoarseCells = coarse.nCells();
     const bool cyclic = !coarse.periodicPatches.empty();
@@ -228,38 +318,25 @@ static void meshCase
     stages.end();
 
     stages.begin("balance", "Stage 6: fine cells balanced between ranks");
-    pmsh::rankTets share = pmsh::rankShareOf(volume, surface, numbering, cyclic);
+    pmsh::rankTets share =
+        pmsh::rankShareOf(volume, surface, numbering, cyclic, layers, layerPoints);
     pmsh::failTogether(comm, [&]
     {
         pmsh::balanceAndLog(comm, share, volume);
     });
     stages.end();
 
-    stages.begin
+    const pmsh::writtenMesh written = writeStage
     (
-        "write",
-        "Stage 7: writing "
-      + std::string(runTime.writeFormat() == IOstream::BINARY ? "binary" : "ascii")
-      + " through the " + std::string(control.outputFileHandler) + " fileHandler"
+        comm, stages, control, inputs, share, coarse, zonePairs, volume,
+        fieldTemplates, runTime, *output
     );
-    const pmsh::writtenMesh written = pmsh::writeRankMesh
-    (
-        comm, share, coarse, zonePairs, volume, fieldTemplates,
-        control.outputFileHandler, *output
-    );
-    output->commit();
-    if (comm.parallel())
-    {
-        pmsh::writeDecomposeParDict(runTime, inputs.decomposition);
-    }
-    pmsh::logWritten(comm, runTime.globalPath(), written.sizes);
-    pmsh::logMeshQuality(comm, written.quality);
-    stages.end();
 
     pmsh::reportSummary
     (
         comm, runTime.globalPath(), settings, nCoarseCells, coarse.volumeMesher,
-        volume, nFineCells, written.quality, stages, forecast.estimate, repair
+        volume, nFineCells, written.quality, stages, forecast.estimate, repair,
+        layerReport
     );
 }
 

@@ -1,6 +1,7 @@
 #include "meshSettings.H"
 #include "foamShims.H"
 #include "VolumeMesher.H"
+#include "layerSpecification.H"
 
 #include <algorithm>
 #include <sstream>
@@ -540,12 +541,14 @@ void checkPatches(const dictionary& d, const entry& patchesEntry)
                     << "' in patch '" << p.keyword().c_str() << "'."
                     << suggestion(x.keyword(), entries).c_str() << '\n'
                     << "Valid entries of a patch are: 'type' ("
-                    << joined(types).c_str() << ") and 'maxCellSize' (the"
-                    << " coarse cell size on the patch)"
+                    << joined(types).c_str() << "), 'maxCellSize' (the"
+                    << " coarse cell size on the patch) and the prism layers' "
+                    << joined(layerSpecificationEntries()).c_str()
                     << Foam::exit(Foam::FatalIOError);
             }
         }
         localSize(d, p.dict(), "patch '" + p.keyword() + "'");
+        readLayerSpecification(p.dict(), p.keyword());
         const entry* t = foam::findEntry(p.dict(), "type");
         if (!t)
         {
@@ -587,76 +590,12 @@ std::vector<std::string> meshSettingsPatchTypes()
 
 std::vector<std::string> meshSettingsPatchEntries()
 {
-    return {"type", "maxCellSize"};
-}
-
-
-meshSettings::patchTypeChoice meshSettings::choosePatchType
-(
-    const std::string& patchName
-) const
-{
-    // REGEX search: the literal name first, then the patterns, last first
-    const entry* e = foam::findEntry(patches, patchName, true);
-    if (e && e->isDict() && foam::found(e->dict(), "type"))
+    std::vector<std::string> entries{"type", "maxCellSize"};
+    for (const std::string& e : layerSpecificationEntries())
     {
-        return
-        {
-            foam::get<Foam::word>(e->dict(), "type"),
-            "patches entry \"" + std::string(e->keyword()) + "\""
-        };
+        entries.push_back(e);
     }
-
-    // A CFD user names open boundaries and symmetry planes so; a wall they
-    // must name in pmshDict only if it is called e.g. "inletPipeWall"
-    std::string lower(patchName);
-    std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
-    const auto has = [&](const char* word) { return lower.find(word) != std::string::npos; };
-    if (has("wall"))
-    {
-        return {"wall", "its name"};
-    }
-    for
-    (
-        const char* open
-      : {"inlet", "outlet", "inflow", "outflow", "farfield", "far_field",
-         "freestream", "atmosphere", "ambient", "opening"}
-    )
-    {
-        if (has(open))
-        {
-            return {"patch", "its name (\"" + std::string(open) + "\": flow goes through)"};
-        }
-    }
-    if (has("symm"))
-    {
-        return {"symmetry", "its name"};
-    }
-    return {"wall", "default"};
-}
-
-
-double meshSettings::patchMaxCellSize(const std::string& patchName) const
-{
-    // The same entry as patchType's
-    const entry* e = foam::findEntry(patches, patchName, true);
-    return
-        e && e->isDict()
-      ? foam::getOrDefault<Foam::scalar>(e->dict(), "maxCellSize", 0)
-      : 0;
-}
-
-
-bool meshSettings::hasPatchSizes() const
-{
-    for (const entry& e : patches)
-    {
-        if (e.isDict() && foam::found(e.dict(), "maxCellSize"))
-        {
-            return true;
-        }
-    }
-    return false;
+    return entries;
 }
 
 

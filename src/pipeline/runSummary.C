@@ -108,7 +108,7 @@ runFigures gatherFigures
     // mesh (writing excluded)
     f.coarseTime = stages.time("coarse");
     f.fineTime =
-        stages.time("partition") + stages.time("surface")
+        stages.time("partition") + stages.time("surface") + stages.time("layers")
       + stages.time("volume") + stages.time("numbering") + stages.time("balance");
     f.perCore = f.fineTime > 0 ? nFineCells/f.fineTime/comm.size() : 0;
     for (double m : f.memory) f.memorySum += m;
@@ -193,7 +193,8 @@ void writeSummaryJson
     const pmsh::meshQualityReport& quality,
     const pmsh::stageLog& stages,
     const pmsh::memoryEstimate& estimate,
-    const pmsh::projectionRepairSummary& repair
+    const pmsh::projectionRepairSummary& repair,
+    const pmsh::layerReport& layers
 )
 {
     using namespace pmsh;
@@ -251,6 +252,19 @@ void writeSummaryJson
         << ", \"regions\": " << estimate.regionShare << ", \"boundary\": "
         << estimate.boundaryShare << "},\n"
         << "  \"estimatedPeakMemoryPerRankBytes\": " << estimate.bytesPerRank << ",\n"
+        << "  \"prisms\": " << layers.prisms << ",\n"
+        << "  \"layers\": {";
+    for (std::size_t i = 0; i < layers.patches.size(); ++i)
+    {
+        const patchLayerReport& r = layers.patches[i];
+        os  << (i ? ",\n" : "\n") << "    " << jsonString(r.patch) << ": {\"faces\": "
+            << r.faces << ", \"layers\": " << r.layers << ", \"coverage\": "
+            << r.coverage() << ", \"firstLayer\": "
+            << jsonArray(std::vector<double>(r.firstLayer, r.firstLayer + 3))
+            << ", \"thickness\": "
+            << jsonArray(std::vector<double>(r.thickness, r.thickness + 3)) << "}";
+    }
+    os  << (layers.patches.empty() ? "},\n" : "\n  },\n")
         << "  \"quality\": {\n";
     // One entry per measure: overall, then per rank
     using measure = double meshQuality::*;
@@ -294,7 +308,8 @@ void pmsh::reportSummary
     const meshQualityReport& quality,
     const stageLog& stages,
     const memoryEstimate& estimate,
-    const projectionRepairSummary& repair
+    const projectionRepairSummary& repair,
+    const layerReport& layers
 )
 {
     const runFigures figures = gatherFigures(comm, volume, nFineCells, stages);
@@ -304,7 +319,7 @@ void pmsh::reportSummary
         writeSummaryJson
         (
             caseDir, figures, comm, settings, coarseCells, coarseMesher,
-            nFineCells, quality, stages, estimate, repair
+            nFineCells, quality, stages, estimate, repair, layers
         );
     }
 }

@@ -42,9 +42,16 @@ pmsh::rankTets pmsh::rankShareOf
     partitionVolumeResult& volume,
     FineSurface& surface,
     globalPointNumbering& numbering,
-    bool keepPointIds
+    bool keepPointIds,
+    const wallLayers& layers,
+    const layerPointList& layerPoints
 )
 {
+    layerCells cells;
+    if (!layers.prisms.empty())
+    {
+        cells = layerCellsOf(surface, layers, layerPoints, surface.points);
+    }
     dropFacesBetweenZones(surface);
     rankTets share;
     share.points = std::move(volume.mesh.points);
@@ -60,6 +67,7 @@ pmsh::rankTets pmsh::rankShareOf
         share.pointIds.resize(share.points.size());
     }
     surface = FineSurface();
+    appendLayerCells(share, std::move(cells));
     return share;
 }
 

@@ -1,0 +1,521 @@
+#include "layerStage.H"
+#include "mpiLayerExchange.H"
+#include "pmshError.H"
+
+#include "streamManip.H"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+namespace pmsh
+{
+
+namespace
+{
+
+const char* const where = "pmsh::layerStage";
+
+
+//- The kernel's gap query over the coarse boundary and the faces between
+//  zones: the coarse mesh is the same on every rank, so every rank gets the
+//  same answer for the same ray (the fine wall of another part is not
+//  there to ask). Only rays up to `reach` matter (the thickest stack over
+//  its gap ratio): the triangles are binned in a grid of cells of that
+//  size, and a ray visits the few cells of its segment's box. A boundary
+//  triangle counts only when the ray leaves the domain through it: the
+//  coarse chords of the point's own concave wall lie just in front of it,
+//  seen from behind.
+class coarseWallGap
+{
+public:
+
+    coarseWallGap(const CoarseMesh& coarse, double reach)
+    :
+        points_(coarse.points),
+        reach_(reach)
+    {
+        for (const coarseBoundaryFace& f : coarse.boundary) add(f.v, true);
+        for (const coarseZoneFace& f : coarse.zoneFaces) add(f.v, false);
+        bin();
+    }
+
+    double operator()(const point3& origin, const vector3& d, double skip) const
+    {
+        const point3 end = origin + reach_*d;
+        std::array<long, 3> lo, hi;
+        for (int k = 0; k < 3; ++k)
+        {
+            lo[k] = cellOf(std::min(origin[k], end[k]), k);
+            hi[k] = cellOf(std::max(origin[k], end[k]), k);
+        }
+        double nearest = std::numeric_limits<double>::infinity();
+        for (long i = lo[0]; i <= hi[0]; ++i)
+        for (long j = lo[1]; j <= hi[1]; ++j)
+        for (long k = lo[2]; k <= hi[2]; ++k)
+        {
+            const auto [b, e] = std::equal_range
+            (
+                cellKeys_.begin(), cellKeys_.end(), key(i, j, k)
+            );
+            for (auto it = b; it != e; ++it)
+            {
+                const double t = hit(triangles_[items_[it - cellKeys_.begin()]], origin, d);
+                if (t > skip && t <= reach_) nearest = std::min(nearest, t);
+            }
+        }
+        return nearest;
+    }
+
+private:
+
+    struct triangle
+    {
+        triVerts v;
+        bool oriented;      //!< a boundary face: counts only on leaving
+    };
+
+    void add(const triVerts& v, bool oriented)
+    {
+        triangles_.push_back({v, oriented});
+    }
+
+    long cellOf(double x, int k) const
+    {
+        return long(std::floor((x - origin_[k])/reach_));
+    }
+
+    static long key(long i, long j, long k)
+    {
+        // 21 bits an axis: grids of up to 2^21 cells a side
+        return (i << 42) | (j << 21) | k;
+    }
+
+    // Each triangle in every cell its box touches, sorted by cell
+    void bin()
+    {
+        origin_ = points_.empty() ? point3{0, 0, 0} : points_[0];
+        for (const point3& p : points_)
+        {
+            for (int k = 0; k < 3; ++k) origin_[k] = std::min(origin_[k], p[k]);
+        }
+        std::vector<std::pair<long, label>> entries;
+        for (label t = 0; t < label(triangles_.size()); ++t)
+        {
+            const triVerts& v = triangles_[t].v;
+            std::array<long, 3> lo, hi;
+            for (int k = 0; k < 3; ++k)
+            {
+                const double a = points_[v[0]][k], b = points_[v[1]][k], c = points_[v[2]][k];
+                lo[k] = cellOf(std::min({a, b, c}), k);
+                hi[k] = cellOf(std::max({a, b, c}), k);
+            }
+            for (long i = lo[0]; i <= hi[0]; ++i)
+            for (long j = lo[1]; j <= hi[1]; ++j)
+            for (long k = lo[2]; k <= hi[2]; ++k)
+            {
+                entries.push_back({key(i, j, k), t});
+            }
+        }
+        std::sort(entries.begin(), entries.end());
+        cellKeys_.reserve(entries.size());
+        items_.reserve(entries.size());
+        for (const auto& [c, t] : entries)
+        {
+            cellKeys_.push_back(c);
+            items_.push_back(t);
+        }
+    }
+
+    // Moller-Trumbore: the ray's parameter at the triangle, or -1
+    double hit(const triangle& tri, const point3& o, const vector3& d) const
+    {
+        const point3& p0 = points_[tri.v[0]];
+        const vector3 e1 = points_[tri.v[1]] - p0;
+        const vector3 e2 = points_[tri.v[2]] - p0;
+        if (tri.oriented && dot(cross(e1, e2), d) <= 0) return -1;
+        const vector3 h = cross(d, e2);
+        const double a = dot(e1, h);
+        if (std::abs(a) < 1e-300) return -1;
+        const vector3 s = o - p0;
+        const double u = dot(s, h)/a;
+        if (u < 0 || u > 1) return -1;
+        const vector3 q = cross(s, e1);
+        const double v = dot(d, q)/a;
+        if (v < 0 || u + v > 1) return -1;
+        return dot(e2, q)/a;
+    }
+
+    const std::vector<point3>& points_;
+    double reach_;
+    point3 origin_{0, 0, 0};
+    std::vector<triangle> triangles_;
+    std::vector<long> cellKeys_;       //!< sorted
+    std::vector<label> items_;         //!< the triangle of each key
+};
+
+
+//- How far a gap query must look: the thickest stack over its ratio.
+double gapReach(const std::map<label, layerSpecification>& specs)
+{
+    double reach = 0;
+    for (const auto& [patch, spec] : specs)
+    {
+        reach = std::max(reach, spec.totalThickness()/spec.maxThicknessToGapRatio);
+    }
+    return reach;
+}
+
+} // End anonymous namespace
+
+
+std::map<label, layerSpecification> layerSpecsOf
+(
+    const meshSettings& settings,
+    const CoarseMesh& coarse
+)
+{
+    std::map<label, layerSpecification> specs;
+    for (label p = 0; p < label(coarse.patches.size()); ++p)
+    {
+        const meshPatch& patch = coarse.patches[p];
+        const layerSpecification spec = settings.patchLayers(patch.name);
+        if (!spec.layered())
+        {
+            continue;
+        }
+        if (patch.type != "wall")
+        {
+            throw FatalError
+            (
+                msg() << "Patch '" << patch.name << "' asks for " << spec.nLayers
+                    << " prism layers in " << settings.dictFile << " but is of type '"
+                    << patch.type << "' (" << patch.typeOrigin << ").\n"
+                    "Layers grow on walls only: give it 'type wall;' or take"
+                    " its 'layers' entry out",
+                where
+            );
+        }
+        specs[p] = spec;
+    }
+    if (!specs.empty() && !coarse.periodicPatches.empty())
+    {
+        throw FatalError
+        (
+            msg() << "Prism layers in a geometry with periodic patches ('identify"
+                " periodic') are not supported yet.\nTake the 'layers' entries"
+                " out of " << settings.dictFile << " or the periodic pair out"
+                " of the geometry",
+            where
+        );
+    }
+    return specs;
+}
+
+
+wallLayers growLayers
+(
+    const Communicator& comm,
+    const CoarseMesh& coarse,
+    const std::vector<label>& cellPart,
+    const FineSurface& surface,
+    const std::map<label, layerSpecification>& specs,
+    int refinementLevels
+)
+{
+    const auto gap = std::make_shared<coarseWallGap>(coarse, gapReach(specs));
+    const layerSurface wall
+    {
+        surface.points, surface.ids, surface.triangles, surface.region, specs,
+        [gap](const point3& p, const vector3& d, double skip) { return (*gap)(p, d, skip); }
+    };
+    if (comm.parallel())
+    {
+        mpiLayerExchange exchange(comm, coarse, cellPart, refinementLevels);
+        return growWallLayers(wall, exchange);
+    }
+    noLayerExchange exchange;
+    return growWallLayers(wall, exchange);
+}
+
+
+std::vector<point3> liftedSurfacePoints
+(
+    const wallLayers& layers,
+    const std::vector<point3>& surfacePoints
+)
+{
+    if (layers.nLayers.empty())
+    {
+        return {};
+    }
+    std::vector<point3> lifted(surfacePoints.size());
+    for (label p = 0; p < label(lifted.size()); ++p)
+    {
+        lifted[p] = layers.topPoint(surfacePoints, p);
+    }
+    return lifted;
+}
+
+
+layerPointList::layerPointList(const wallLayers& layers, label nSurfacePoints, label first)
+:
+    levelZero_(nSurfacePoints, -1)
+{
+    std::vector<bool> used(nSurfacePoints, false);
+    for (const std::array<layerPointRef, 6>& prism : layers.prisms)
+    {
+        for (const layerPointRef& r : prism) used[r.point] = true;
+    }
+    for (label p = 0; p < nSurfacePoints; ++p)
+    {
+        if (!used[p]) continue;
+        levelZero_[p] = first + label(refs_.size());
+        for (int k = 0; k < layers.nLayers[p]; ++k)
+        {
+            refs_.push_back({p, k});
+        }
+    }
+}
+
+
+layerPointList numberLayerPoints
+(
+    const Communicator& comm,
+    const CoarseMesh& coarse,
+    const std::vector<label>& cellPart,
+    const FineSurface& surface,
+    const wallLayers& layers,
+    bool layered,
+    globalPointNumbering& numbering
+)
+{
+    if (!layered)
+    {
+        return layerPointList();
+    }
+    layerPointList list
+    (
+        layers, label(surface.points.size()), label(numbering.globalIds().size())
+    );
+    numbering.addLayerPoints(comm, coarse, cellPart, surface.ids, list.refs());
+    return list;
+}
+
+
+layerCells layerCellsOf
+(
+    FineSurface& surface,
+    const wallLayers& layers,
+    const layerPointList& list,
+    const std::vector<point3>& wallPoints
+)
+{
+    layerCells cells;
+    for (const auto& [p, k] : list.refs())
+    {
+        cells.points.push_back(layers.levelPoint(wallPoints, p, k));
+    }
+    cells.prisms.reserve(layers.prisms.size());
+    for (std::size_t j = 0; j < layers.prisms.size(); ++j)
+    {
+        std::array<label, 6> prism;
+        for (int i = 0; i < 6; ++i) prism[i] = list.index(layers, layers.prisms[j][i]);
+        cells.prisms.push_back(prism);
+        if (!surface.zone.empty())
+        {
+            cells.prismZone.push_back(surface.zone[layers.prismTriangle[j]]);
+        }
+    }
+    for (const layerSideFace& f : layers.sideFaces)
+    {
+        if (isBetweenZones(f.region))
+        {
+            const point3& x = wallPoints[f.points[0].point];
+            throw FatalError
+            (
+                msg() << "Prism layers end at the surface between two cellZones"
+                    " near (" << x[0] << ' ' << x[1] << ' ' << x[2] << "): not"
+                    " supported yet (the other solid's cells would meet the"
+                    " layers' side faces with triangles).\nTake the 'layers'"
+                    " entry off the patch that meets the other solid",
+                where
+            );
+        }
+        std::array<label, 4> quad;
+        for (int i = 0; i < 4; ++i) quad[i] = list.index(layers, f.points[i]);
+        cells.quads.push_back(quad);
+        cells.quadRegion.push_back(f.region);
+    }
+    // The tets meet a layered triangle at its top: what stays on the
+    // surface there is the bottom prism's base, on the wall
+    for (label t = 0; t < label(surface.triangles.size()); ++t)
+    {
+        if (!layers.triangleLayered[t]) continue;
+        for (label& v : surface.triangles[t])
+        {
+            v = list.index(layers, {v, 0});
+        }
+    }
+    return cells;
+}
+
+
+void appendLayerCells(rankTets& share, layerCells&& cells)
+{
+    share.points.insert(share.points.end(), cells.points.begin(), cells.points.end());
+    share.prisms = std::move(cells.prisms);
+    share.prismZone = std::move(cells.prismZone);
+    share.quads = std::move(cells.quads);
+    share.quadRegion = std::move(cells.quadRegion);
+}
+
+
+namespace
+{
+
+//- One patch's figures on one rank, gathered in one collective.
+struct patchLayerFigures
+{
+    double faces = 0, layeredFaces = 0;
+    double samples = 0;
+    double firstSum = 0, firstMin = std::numeric_limits<double>::infinity(), firstMax = 0;
+    double totalSum = 0, totalMin = std::numeric_limits<double>::infinity(), totalMax = 0;
+};
+
+
+patchLayerFigures patchFigures
+(
+    const wallLayers& layers,
+    const FineSurface& surface,
+    label patch
+)
+{
+    patchLayerFigures f;
+    for (label t = 0; t < label(surface.triangles.size()); ++t)
+    {
+        if (surface.region[t] != patch) continue;
+        ++f.faces;
+        if (!layers.triangleLayered[t]) continue;
+        ++f.layeredFaces;
+        for (label v : surface.triangles[t])
+        {
+            const double total = layers.thickness[v];
+            const double first = total*layers.levelFractions.at(layers.specPatch[v])[1];
+            ++f.samples;
+            f.firstSum += first;
+            f.firstMin = std::min(f.firstMin, first);
+            f.firstMax = std::max(f.firstMax, first);
+            f.totalSum += total;
+            f.totalMin = std::min(f.totalMin, total);
+            f.totalMax = std::max(f.totalMax, total);
+        }
+    }
+    return f;
+}
+
+
+patchLayerReport gatheredReport
+(
+    const Communicator& comm,
+    const std::string& name,
+    int nLayers,
+    const patchLayerFigures& mine
+)
+{
+    patchLayerReport r;
+    r.patch = name;
+    r.layers = nLayers;
+    patchLayerFigures all;
+    for (const patchLayerFigures& f : comm.allGather(mine))
+    {
+        all.faces += f.faces;
+        all.layeredFaces += f.layeredFaces;
+        all.samples += f.samples;
+        all.firstSum += f.firstSum;
+        all.totalSum += f.totalSum;
+        all.firstMin = std::min(all.firstMin, f.firstMin);
+        all.firstMax = std::max(all.firstMax, f.firstMax);
+        all.totalMin = std::min(all.totalMin, f.totalMin);
+        all.totalMax = std::max(all.totalMax, f.totalMax);
+    }
+    r.faces = all.faces;
+    r.layeredFaces = all.layeredFaces;
+    if (all.samples > 0)
+    {
+        r.firstLayer[0] = all.firstMin;
+        r.firstLayer[1] = all.firstSum/all.samples;
+        r.firstLayer[2] = all.firstMax;
+        r.thickness[0] = all.totalMin;
+        r.thickness[1] = all.totalSum/all.samples;
+        r.thickness[2] = all.totalMax;
+    }
+    return r;
+}
+
+
+void logLayerReport(const layerReport& report)
+{
+    using namespace Foam;
+    Info<< "    " << setw(16) << "patch" << setw(10) << "faces" << setw(8) << "layers"
+        << setw(11) << "coverage" << "  first layer min/avg/max"
+        << "     thickness min/avg/max\n";
+    for (const patchLayerReport& r : report.patches)
+    {
+        Info<< "    " << setw(16) << r.patch.c_str() << setw(10) << label(r.faces)
+            << setw(8) << r.layers << setw(9)
+            << std::round(1000*r.coverage())/10 << " %  "
+            << r.firstLayer[0] << " / " << r.firstLayer[1] << " / " << r.firstLayer[2]
+            << "   " << r.thickness[0] << " / " << r.thickness[1] << " / "
+            << r.thickness[2] << nl;
+    }
+    Info<< "    prisms: " << label(report.prisms) << "; points thinned at sharp edges "
+        << report.thinned.nFeatureLimited << ", by gaps " << report.thinned.nGapLimited
+        << ", for valid prisms " << report.thinned.nInvalidLimited
+        << " (partition interfaces " << report.thinned.nInterfaceLimited << ") in "
+        << report.thinned.nRounds << " rounds" << endl;
+}
+
+} // End anonymous namespace
+
+
+layerReport reportLayers
+(
+    const Communicator& comm,
+    const wallLayers& layers,
+    const FineSurface& surface,
+    const CoarseMesh& coarse,
+    const std::map<label, layerSpecification>& specs
+)
+{
+    layerReport report;
+    for (const auto& [patch, spec] : specs)
+    {
+        report.patches.push_back
+        (
+            gatheredReport
+            (
+                comm, coarse.patches[patch].name, spec.nLayers,
+                patchFigures(layers, surface, patch)
+            )
+        );
+    }
+    struct counts { double prisms; wallLayerStats stats; };
+    for (const counts& c : comm.allGather(counts{double(layers.prisms.size()), layers.stats}))
+    {
+        report.prisms += c.prisms;
+        report.thinned.nFeatureLimited += c.stats.nFeatureLimited;
+        report.thinned.nGapLimited += c.stats.nGapLimited;
+        report.thinned.nInvalidLimited += c.stats.nInvalidLimited;
+        report.thinned.nInterfaceLimited += c.stats.nInterfaceLimited;
+        report.thinned.nRounds = std::max(report.thinned.nRounds, c.stats.nRounds);
+    }
+    logLayerReport(report);
+    return report;
+}
+
+} // End namespace pmsh
+
+
+// ************************************************************************* //

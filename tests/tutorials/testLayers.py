@@ -1,0 +1,145 @@
+"""Prism layers on walls, end to end: the pipe tutorial's pressure drop
+against Hagen-Poiseuille (its Allrun, layers on the wall), a body-in-box
+STL with layers on the body on 2 ranks (checkMesh Mesh OK, coverage in the
+log and summary.json), the same prisms at 1, 2 and 4 ranks, and the
+errors a user meets (layers on a patch that is not a wall).
+
+Run one test:  python3 testLayers.py layers.test_pipeAllrunGivesPressureDropWithin2Percent
+"""
+
+import json
+import os
+import re
+import subprocess
+import sys
+import unittest
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from tutorialCase import cells_in_checkmesh_log, openfoam_environment  # noqa: E402
+from testSerialTutorials import CaseTest  # noqa: E402
+from testBodyInBox import bodyInBox  # noqa: E402
+
+
+def set_patches(case, patches):
+    """Replace system/pmshDict's patches sub-dictionary."""
+    path = os.path.join(case.dir, "system", "pmshDict")
+    with open(path) as f:
+        text = f.read()
+    body = "".join("    %s { %s }\n" % p for p in patches.items())
+    text, n = re.subn(r"(?ms)^patches\s*\{.*?^\}", "patches\n{\n%s}" % body, text)
+    if n == 0:
+        text += "\npatches\n{\n%s}\n" % body
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def summary(case):
+    with open(os.path.join(case.dir, "postProcessing", "pmshFoam", "summary.json")) as f:
+        return json.load(f)
+
+
+def prism_cells(case, np):
+    """Every prism of the mesh as the frozenset of its six points'
+    coordinates (binary output: the bits pmshFoam computed), over all
+    processor directories; a prism is a cell of 5 faces."""
+    dirs = ["constant/polyMesh"] if np == 1 else \
+        ["processor%d/constant/polyMesh" % i for i in range(np)]
+    prisms = set()
+    for d in dirs:
+        mesh = case.polymesh(d)
+        points = mesh.points()
+        faces = mesh.faces()
+        owner = mesh.labels("owner")
+        neighbour = mesh.labels("neighbour")
+        cell_faces = {}
+        for f, c in enumerate(owner):
+            cell_faces.setdefault(c, []).append(f)
+        for f, c in enumerate(neighbour):
+            cell_faces.setdefault(c, []).append(f)
+        for c, fs in cell_faces.items():
+            if len(fs) == 5:
+                pts = frozenset(points[p] for f in fs for p in faces[f])
+                prisms.add(pts)
+    return prisms
+
+
+class layers(CaseTest):
+
+    def test_pipeAllrunGivesPressureDropWithin2Percent(self):
+        """tutorials/pipe as shipped (5 layers on the wall, 2 ranks): Mesh
+        OK, 100 % layer coverage in the log, and the Allrun's pressure drop
+        within 2 % of Hagen-Poiseuille (tetrahedra alone gave +26 %)."""
+        c = self.case("pipe")
+        env = openfoam_environment()
+        env["PATH"] = os.path.dirname(c.pmshFoam) + ":" + env["PATH"]
+        proc = subprocess.run([os.path.join(c.dir, "Allrun")], stdin=subprocess.DEVNULL,
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              env=env, timeout=1100)
+        out = proc.stdout.decode()
+        self.assertEqual(proc.returncode, 0, out[-3000:])
+        self.assertIn("Mesh OK", out)
+        with open(os.path.join(c.dir, "log.pmshFoam")) as f:
+            log = f.read()
+        self.assertRegex(log, r"(?m)^\s*walls\s+\d+\s+5\s+100(\.0)? %")
+        dp = re.search(r"dp = ([\d.]+)\s+Hagen-Poiseuille 3.2\s+difference ([-+][\d.]+) %", out)
+        self.assertIsNotNone(dp, out[-3000:])
+        self.assertLess(abs(float(dp.group(1)) - 3.2) / 3.2, 0.02)
+
+    def test_bodyInBoxStlWithLayersOnTheBodyNp2(self):
+        """sphereInBox.stl, 3 layers on the body, 2 ranks: checkMesh Mesh
+        OK with prisms, every body face layered (coverage 1 in
+        summary.json and 100 % in the log), first layer as asked."""
+        helper = bodyInBox(methodName="test_stlNp2")
+        c = helper.body_case("sphereInBox.stl")
+        self.cases.append(c)
+        set_patches(c, {"inlet": "type patch;", "outlet": "type patch;",
+                        "sides": "type patch;",
+                        "body": "type wall; layers 3; firstLayerThickness 0.01;"})
+        _, log = c.run("pmshFoam", np=2)
+        self.assertIn("Stage 3b: prism layers", log)
+        self.assertRegex(log, r"(?m)^\s*body\s+\d+\s+3\s+100(\.0)? %")
+        text = c.check_mesh(np=2)
+        self.assertRegex(text, r"prisms:\s+[1-9]\d*")
+        s = summary(c)
+        body = s["layers"]["body"]
+        self.assertEqual(body["layers"], 3)
+        self.assertEqual(body["coverage"], 1)
+        self.assertAlmostEqual(body["firstLayer"][2], 0.01, 9)
+        self.assertGreater(s["prisms"], 0)
+        self.assertEqual(cells_in_checkmesh_log(text), s["fineCells"])
+
+    def pipe_prisms(self, np):
+        c = self.case("pipe", refinementLevels=1)
+        c.write_format("binary")
+        c.run("pmshFoam", np=np)
+        c.check_mesh(np=np)
+        self.assertRegex(open(os.path.join(c.dir, "log.pmshFoam")).read(),
+                         r"partition interfaces 0\)")
+        return prism_cells(c, np)
+
+    def test_prismsAreTheSameAtOneTwoAndFourRanks(self):
+        """The pipe at r = 1: the prisms, by the bits of their six points,
+        are the same serially and on 2 and 4 ranks (normals and
+        thicknesses agree across processor boundaries, and the layers run
+        through them)."""
+        serial = self.pipe_prisms(1)
+        self.assertGreater(len(serial), 1000)
+        for np in (2, 4):
+            self.assertEqual(self.pipe_prisms(np), serial, "np %d" % np)
+
+    def test_layersOnAPatchThatIsNotAWallAreAnError(self):
+        """layers on the inlet (type patch): a FOAM FATAL ERROR naming the
+        patch and the fix, non-zero exit, no mesh written."""
+        c = self.case("pipe", refinementLevels=1)
+        set_patches(c, {"inlet": "type patch; layers 3; firstLayerThickness 0.01;",
+                        "outlet": "type patch;", "walls": "type wall;"})
+        code, log = c.run("pmshFoam", check=False)
+        self.assertNotEqual(code, 0)
+        self.assertIn("FOAM FATAL", log)
+        self.assertIn("Patch 'inlet' asks for 3 prism layers", log)
+        self.assertIn("type wall;", log)
+        self.assertFalse(c.exists("constant/polyMesh/faces"))
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
