@@ -378,6 +378,13 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
     {
         return stats;
     }
+    // Layered meshes stay as they are (see the header): decided together,
+    // as one rank may have no layers
+    const bool layered = !mesh.prisms.empty() || !mesh.quads.empty();
+    if (comm.sum(std::int64_t(layered)) > 0)
+    {
+        return stats;
+    }
     const int me = comm.rank();
     const label nTets = label(mesh.tets.size());
     const std::vector<double> loads = comm.allGather(double(nTets));

@@ -74,6 +74,8 @@ pmsh::rankTets pmsh::rankShareOf
 
 pmsh::meshSizes pmsh::meshSizesOf(const tetPolyMesh& mesh)
 {
+    // Faces count quads (prism layers) too: a quad is one face of faces;
+    // cellZone holds the prisms' zones after the tets'
     meshSizes sizes{double(mesh.nFaces()), double(mesh.points.size()), {}};
     for (const meshPatch& p : mesh.patches)
     {

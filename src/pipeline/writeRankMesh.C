@@ -3,6 +3,7 @@
 #include "cyclicFaces.H"
 #include "failTogether.H"
 #include "foamMeshOutput.H"
+#include "pmshError.H"
 #include "procAddressing.H"
 #include "tetsToPolyMesh.H"
 
@@ -10,6 +11,25 @@ namespace
 {
 
 using namespace pmsh;
+
+// The zone of every cell: the tets' then the prisms' (none without zones)
+std::vector<label> cellZonesOf(rankTets& share, label nCells)
+{
+    std::vector<label> zones = std::move(share.tetZone);
+    zones.insert(zones.end(), share.prismZone.begin(), share.prismZone.end());
+    share.prismZone = {};
+    if (!zones.empty() && label(zones.size()) != nCells)
+    {
+        throw FatalError
+        (
+            msg() << zones.size() << " cell zones (tetZone and prismZone)"
+                " given for " << nCells << " cells (need one per cell, or none)",
+            "writeRankMesh"
+        );
+    }
+    return zones;
+}
+
 
 // The share's tets as a polyMesh (its arrays freed as they are used), the
 // cyclic faces in the order both sides of a cyclic patch agree on
@@ -29,13 +49,17 @@ tetPolyMesh polyMeshOf
             std::move(share.points), share.tets,
             share.triangles, share.region,
             coarse.patches, comm.parallel() ? comm.rank() : -1,
-            share.globalIds
+            share.globalIds,
+            share.prisms, share.quads, share.quadRegion
         );
         share.tets = {};
         share.triangles = {};
         share.region = {};
+        share.prisms = {};
+        share.quads = {};
+        share.quadRegion = {};
         mesh.zoneNames = coarse.zones;
-        mesh.cellZone = std::move(share.tetZone);
+        mesh.cellZone = cellZonesOf(share, mesh.nCells);
         mesh.zonePairs = zonePairs;
     });
     if (!coarse.periodicPatches.empty())

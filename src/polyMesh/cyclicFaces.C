@@ -343,6 +343,18 @@ void pmsh::orderCyclicFaces
     {
         return;
     }
+    // Faces here are triangles (boundaryFace): prism layers with cyclic
+    // patches are not supported yet. Decided together, as one rank may
+    // have no prisms
+    if (comm.sum(std::int64_t(mesh.nPrisms > 0 || !mesh.quads.empty())) > 0)
+    {
+        throw FatalError
+        (
+            msg() << "Prism layers with cyclic patches are not supported yet:"
+                " remove the layers or the periodic patches",
+            "orderCyclicFaces"
+        );
+    }
     const label myRank = comm.rank();
 
     std::vector<std::vector<boundaryFace>> kept;

@@ -43,16 +43,41 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
     // Each face is a view of its three labels in the tetPolyMesh's triangles.
     // List<face> forbids this (List::shallowCopy is deleted, as a List
     // owns its storage): the view is set through UList, and the destructor
-    // takes every view back before the faceList would free it
+    // takes every view back before the faceList would free it. With prism
+    // layers (quads) the faces are OpenFOAM's own, of 3 or 4 points
     static_assert(sizeof(triVerts) == 3*sizeof(label), "triangles are 3 contiguous labels");
-    triangles_ = std::move(mesh.faces);
-    faceList faces(label(triangles_.size()));
-    forAll(faces, i)
+    faceList faces(label(mesh.faces.size()));
+    views_ = mesh.quads.empty();
+    if (views_)
     {
-        static_cast<UList<label>&>(faces[i]).shallowCopy
-        (
-            UList<label>(triangles_[i].data(), 3)
-        );
+        triangles_ = std::move(mesh.faces);
+        forAll(faces, i)
+        {
+            static_cast<UList<label>&>(faces[i]).shallowCopy
+            (
+                UList<label>(triangles_[i].data(), 3)
+            );
+        }
+    }
+    else
+    {
+        std::size_t q = 0;
+        forAll(faces, i)
+        {
+            const triVerts& t = mesh.faces[i];
+            const bool quad = q < mesh.quads.size() && mesh.quads[q].face == i;
+            face& f = faces[i];
+            f.setSize(quad ? 4 : 3);
+            f[0] = t[0];
+            f[1] = t[1];
+            f[2] = t[2];
+            if (quad)
+            {
+                f[3] = mesh.quads[q++].fourth;
+            }
+        }
+        mesh.faces = {};
+        mesh.quads = {};
     }
 
     labelList owner = movedToLabelList(mesh.owner);
@@ -283,7 +308,8 @@ void pmsh::foamRankMesh::write() const
 
     const label nFaces = mesh_->nFaces();
     const bool compact =
-        mesh_->time().writeFormat() == IOstream::BINARY
+        views_
+     && mesh_->time().writeFormat() == IOstream::BINARY
      && nFaces > 0
      && std::size_t(3)*std::size_t(nFaces) <= std::size_t(labelMax);
     if (!compact)
@@ -320,14 +346,14 @@ void pmsh::foamRankMesh::write() const
 pmsh::foamRankMesh::~foamRankMesh()
 {
     // The faces must not free what the block owns
-    if (mesh_.valid())
+    if (mesh_.valid() && views_)
     {
         for (Foam::face& f : const_cast<Foam::faceList&>(mesh_->faces()))
         {
             static_cast<Foam::UList<Foam::label>&>(f).shallowCopy(Foam::UList<Foam::label>());
         }
-        mesh_.clear();
     }
+    mesh_.clear();
 }
 
 

@@ -40,8 +40,10 @@ using namespace Foam;
 // volumes are kept here; the formulas are primitiveMesh's, so the figures
 // are checkMesh's.
 
-//- primitiveMeshFaceCentresAndAreas for a triangle (every face here)
-inline void triangleCentreAndArea
+//- primitiveMeshFaceCentresAndAreas: a triangle directly (every face of a
+//  tet mesh), a larger face (a prism's side quad) as the triangles from
+//  its points' mean, area-weighted
+inline void faceCentreAndArea
 (
     const pointField& p,
     const face& f,
@@ -49,8 +51,41 @@ inline void triangleCentreAndArea
     vector& area
 )
 {
-    centre = (1.0/3.0)*(p[f[0]] + p[f[1]] + p[f[2]]);
-    area = 0.5*((p[f[1]] - p[f[0]]) ^ (p[f[2]] - p[f[0]]));
+    const label n = f.size();
+    if (n == 3)
+    {
+        centre = (1.0/3.0)*(p[f[0]] + p[f[1]] + p[f[2]]);
+        area = 0.5*((p[f[1]] - p[f[0]]) ^ (p[f[2]] - p[f[0]]));
+        return;
+    }
+    point fCentre = p[f[0]];
+    for (label pi = 1; pi < n; ++pi)
+    {
+        fCentre += p[f[pi]];
+    }
+    fCentre /= n;
+    vector sumN = Zero, sumAc = Zero;
+    scalar sumA = 0;
+    for (label pi = 0; pi < n; ++pi)
+    {
+        const point& nextPoint = p[f[(pi + 1) % n]];
+        const vector c = p[f[pi]] + nextPoint + fCentre;
+        const vector an = (nextPoint - p[f[pi]]) ^ (fCentre - p[f[pi]]);
+        const scalar a = mag(an);
+        sumN += an;
+        sumA += a;
+        sumAc += a*c;
+    }
+    if (sumA < ROOTVSMALL)
+    {
+        centre = fCentre;
+        area = Zero;
+    }
+    else
+    {
+        centre = (1.0/3.0)*sumAc/sumA;
+        area = 0.5*sumN;
+    }
 }
 
 
@@ -60,7 +95,8 @@ void cellCentresAndVolumes
 (
     const polyMesh& mesh,
     pointField& centres,
-    scalarField& volumes
+    scalarField& volumes,
+    std::int64_t& nPrisms
 )
 {
     const pointField& p = mesh.points();
@@ -68,25 +104,28 @@ void cellCentresAndVolumes
     const labelList& own = mesh.faceOwner();
     const labelList& nei = mesh.faceNeighbour();
 
+    nPrisms = 0;
     vectorField estimate(mesh.nCells(), Zero);
     {
         labelField nCellFaces(mesh.nCells(), 0);
         vector c, s;
         forAll(own, facei)
         {
-            triangleCentreAndArea(p, faces[facei], c, s);
+            faceCentreAndArea(p, faces[facei], c, s);
             estimate[own[facei]] += c;
             ++nCellFaces[own[facei]];
         }
         forAll(nei, facei)
         {
-            triangleCentreAndArea(p, faces[facei], c, s);
+            faceCentreAndArea(p, faces[facei], c, s);
             estimate[nei[facei]] += c;
             ++nCellFaces[nei[facei]];
         }
         forAll(estimate, celli)
         {
             estimate[celli] /= nCellFaces[celli];
+            // Cells are tets (4 faces) or prisms (5)
+            nPrisms += nCellFaces[celli] == 5;
         }
     }
 
@@ -95,14 +134,14 @@ void cellCentresAndVolumes
     vector c, s;
     forAll(own, facei)
     {
-        triangleCentreAndArea(p, faces[facei], c, s);
+        faceCentreAndArea(p, faces[facei], c, s);
         const scalar pyr3Vol = s & (c - estimate[own[facei]]);
         centres[own[facei]] += pyr3Vol*((3.0/4.0)*c + (1.0/4.0)*estimate[own[facei]]);
         volumes[own[facei]] += pyr3Vol;
     }
     forAll(nei, facei)
     {
-        triangleCentreAndArea(p, faces[facei], c, s);
+        faceCentreAndArea(p, faces[facei], c, s);
         const scalar pyr3Vol = s & (estimate[nei[facei]] - c);
         centres[nei[facei]] += pyr3Vol*((3.0/4.0)*c + (1.0/4.0)*estimate[nei[facei]]);
         volumes[nei[facei]] += pyr3Vol;
@@ -146,7 +185,8 @@ pmsh::meshQualityReport pmsh::meshQualityOf
 
     pointField centres(mesh.nCells());
     scalarField volumes(mesh.nCells());
-    cellCentresAndVolumes(mesh, centres, volumes);
+    std::int64_t nPrisms = 0;
+    cellCentresAndVolumes(mesh, centres, volumes, nPrisms);
 
     // checkMesh -parallel: processor faces see the neighbour rank's cell
     // centres (swapped inside, collective)
@@ -175,8 +215,12 @@ pmsh::meshQualityReport pmsh::meshQualityOf
     for (label facei = 0; facei < mesh.nFaces(); ++facei)
     {
         const face& f = faces[facei];
-        triangleCentreAndArea(p, f, c, s);
+        faceCentreAndArea(p, f, c, s);
         const pmsh::point3 a = asPoint3(p[f[0]]), b = asPoint3(p[f[1]]), e = asPoint3(p[f[2]]);
+        // A quad's skewness is normalised by its extent over all 4 points:
+        // the smaller of the kernel's over (a b e) and over (a e g)
+        const bool quad = f.size() == 4;
+        const pmsh::point3 g = quad ? asPoint3(p[f[3]]) : e;
         const pmsh::point3 fc = asPoint3(c);
         const pmsh::vector3 S = asPoint3(s);
         const Foam::point& ownCc = centres[own[facei]];
@@ -184,14 +228,24 @@ pmsh::meshQualityReport pmsh::meshQualityOf
         const bool internal = facei < nInternal;
         if (!internal && !coupled[facei - nInternal])
         {
-            maxSkew = std::max(maxSkew, boundaryFaceMetricsOf(a, b, e, fc, S, Cpf).skewness);
+            double skew = boundaryFaceMetricsOf(a, b, e, fc, S, Cpf).skewness;
+            if (quad)
+            {
+                skew = std::min(skew, boundaryFaceMetricsOf(a, e, g, fc, S, Cpf).skewness);
+            }
+            maxSkew = std::max(maxSkew, skew);
             continue;
         }
         const Foam::point& neiCc =
             internal ? centres[mesh.faceNeighbour()[facei]] : neighbourCentres[facei - nInternal];
         const pmsh::vector3 d = asPoint3(neiCc - ownCc);
         const double ortho = nonOrthogonalityCos(S, d);
-        maxSkew = std::max(maxSkew, internalFaceSkewness(a, b, e, fc, S, Cpf, d));
+        double skew = internalFaceSkewness(a, b, e, fc, S, Cpf, d);
+        if (quad)
+        {
+            skew = std::min(skew, internalFaceSkewness(a, e, g, fc, S, Cpf, d));
+        }
+        maxSkew = std::max(maxSkew, skew);
         if (counted[facei])
         {
             minCos = std::min(minCos, ortho);
@@ -211,7 +265,7 @@ pmsh::meshQualityReport pmsh::meshQualityOf
     {
         double minCos, sumCos, minProcessorCos, maxSkew, minVolume;
         double minDihedral, maxDihedral, maxAspectRatio;
-        std::int64_t nCounted, nSevere;
+        std::int64_t nCounted, nSevere, nCells, nPrisms;
     };
     const std::vector<rankFigures> ranks = comm.allGather
     (
@@ -219,7 +273,7 @@ pmsh::meshQualityReport pmsh::meshQualityOf
         {
             minCos, sumCos, minProcessorCos, maxSkew, minVolume,
             volume.minDihedral, volume.maxDihedral, volume.maxAspectRatio,
-            nCounted, nSevere
+            nCounted, nSevere, std::int64_t(mesh.nCells()), nPrisms
         }
     );
 
@@ -242,6 +296,8 @@ pmsh::meshQualityReport pmsh::meshQualityOf
         q.maxDihedral = r.maxDihedral;
         q.maxAspectRatio = r.maxAspectRatio;
         q.nSevereNonOrthogonal = r.nSevere;
+        q.nCells = r.nCells;
+        q.nPrisms = r.nPrisms;
         report.perRank.push_back(q);
 
         allMinCos = std::min(allMinCos, r.minCos);
@@ -254,6 +310,8 @@ pmsh::meshQualityReport pmsh::meshQualityOf
         all.maxDihedral = std::max(all.maxDihedral, q.maxDihedral);
         all.maxAspectRatio = std::max(all.maxAspectRatio, q.maxAspectRatio);
         all.nSevereNonOrthogonal += q.nSevereNonOrthogonal;
+        all.nCells += q.nCells;
+        all.nPrisms += q.nPrisms;
     }
     all.maxNonOrthogonality = degreesOfCos(allMinCos);
     all.avgNonOrthogonality = allCounted > 0 ? degreesOfCos(allSumCos/double(allCounted)) : 0;
@@ -285,6 +343,12 @@ void pmsh::logMeshQuality(const Communicator& comm, const meshQualityReport& qua
         << "        tet dihedral angles min/max: " << q.minDihedral << " / "
         << q.maxDihedral << " degrees, max aspect ratio " << q.maxAspectRatio
         << '\n';
+    if (q.nPrisms > 0)
+    {
+        Info
+            << "        cells: " << q.nCells - q.nPrisms << " tets, "
+            << q.nPrisms << " prisms\n";
+    }
     if (comm.parallel())
     {
         std::vector<double> nonOrth, skew;

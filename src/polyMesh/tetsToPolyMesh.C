@@ -1,5 +1,6 @@
 #include "tetsToPolyMesh.H"
 #include "pmshError.H"
+#include "prismFaces.H"
 #include "tetFaceMatching.H"
 
 #include <algorithm>
@@ -21,6 +22,8 @@ void checkSizes
     std::size_t nPoints,
     std::size_t nTris,
     const std::vector<label>& boundaryRegion,
+    std::size_t nQuads,
+    const std::vector<label>& quadRegion,
     label myProcNo,
     const std::vector<label>& globalPointIds
 )
@@ -40,6 +43,15 @@ void checkSizes
         (
             msg() << boundaryRegion.size() << " boundary regions given for "
                 << nTris << " boundary triangles (need one per triangle)",
+            where
+        );
+    }
+    if (quadRegion.size() != nQuads)
+    {
+        throw FatalError
+        (
+            msg() << quadRegion.size() << " quad regions given for "
+                << nQuads << " boundary quads (need one per quad)",
             where
         );
     }
@@ -87,12 +99,47 @@ void checkPatchNames(const std::vector<meshPatch>& physicalPatches)
 }
 
 
-//- Point indices in range, tets of positive volume, every point used.
-void checkTetsAndTriangles
+//- Is every index of cell or face c a point below nPoints?
+template<class Verts>
+bool inRange(const Verts& c, std::size_t nPoints)
+{
+    return std::all_of
+    (
+        c.begin(), c.end(),
+        [&](label v) { return v >= 0 && std::size_t(v) < nPoints; }
+    );
+}
+
+
+//- A positive prism: each top point above the base's plane, each base
+//  point below the top's (both planes by the right-hand rule of (0 1 2)
+//  and (3 4 5), the base's normal towards the top).
+bool positivePrism(const std::vector<point3>& p, const prismVerts& c)
+{
+    for (int k = 0; k < 3; ++k)
+    {
+        if
+        (
+            !(tetVolume6(p[c[0]], p[c[1]], p[c[2]], p[c[3 + k]]) > 0)
+         || !(tetVolume6(p[c[3]], p[c[5]], p[c[4]], p[c[k]]) > 0)
+        )
+        {
+            return false;
+        }
+    }
+    return true;
+}
+
+
+//- Point indices in range, tets of positive volume, positive prisms, every
+//  point used.
+void checkCellsAndFaces
 (
     const std::vector<point3>& points,
     const std::vector<tetVerts>& tets,
-    const std::vector<triVerts>& boundaryTriangles
+    const std::vector<prismVerts>& prisms,
+    const std::vector<triVerts>& boundaryTriangles,
+    const std::vector<quadVerts>& boundaryQuads
 )
 {
     const std::size_t nPoints = points.size();
@@ -100,7 +147,7 @@ void checkTetsAndTriangles
     const std::size_t nTris = boundaryTriangles.size();
 
     std::vector<char> used(nPoints, 0);
-    problemCount badIndex, badVolume;
+    problemCount badIndex, badVolume, badPrism;
     for (std::size_t t = 0; t < nTets; ++t)
     {
         const tetVerts& c = tets[t];
@@ -125,19 +172,41 @@ void checkTetsAndTriangles
             badVolume.add([&] { return "tet " + std::to_string(t); });
         }
     }
+    for (std::size_t j = 0; j < prisms.size(); ++j)
+    {
+        if (!inRange(prisms[j], nPoints))
+        {
+            badIndex.add([&] { return "prism " + std::to_string(j); });
+            continue;
+        }
+        for (const label v : prisms[j])
+        {
+            used[v] = 1;
+        }
+        if (!positivePrism(points, prisms[j]))
+        {
+            badPrism.add([&] { return "prism " + std::to_string(j); });
+        }
+    }
     for (std::size_t b = 0; b < nTris; ++b)
     {
-        const triVerts& f = boundaryTriangles[b];
-        if (std::any_of(f.begin(), f.end(), [&](label v) { return v < 0 || std::size_t(v) >= nPoints; }))
+        if (!inRange(boundaryTriangles[b], nPoints))
         {
             badIndex.add([&] { return "boundary triangle " + std::to_string(b); });
+        }
+    }
+    for (std::size_t b = 0; b < boundaryQuads.size(); ++b)
+    {
+        if (!inRange(boundaryQuads[b], nPoints))
+        {
+            badIndex.add([&] { return "boundary quad " + std::to_string(b); });
         }
     }
     if (badIndex.count)
     {
         throw FatalError
         (
-            msg() << badIndex.count << " tets or boundary triangles have a"
+            msg() << badIndex.count << " cells or boundary faces have a"
                 " point index outside 0.." << nPoints - 1 << " (first: "
                 << badIndex.first << ")",
             where
@@ -153,13 +222,24 @@ void checkTetsAndTriangles
             where
         );
     }
+    if (badPrism.count)
+    {
+        throw FatalError
+        (
+            msg() << badPrism.count << " of " << prisms.size() << " prisms are"
+                " not positive (first: " << badPrism.first << ").\n"
+                "Every prism (0 1 2 3 4 5) needs its top points above the"
+                " plane of (0 1 2) and its base points below that of (3 4 5)",
+            where
+        );
+    }
     const std::size_t nUnused = std::count(used.begin(), used.end(), 0);
     if (nUnused)
     {
         throw FatalError
         (
             msg() << nUnused << " of " << nPoints << " points are used by no"
-                " tet; OpenFOAM rejects unused points",
+                " tet or prism; OpenFOAM rejects unused points",
             where
         );
     }
@@ -171,6 +251,7 @@ void checkTetsAndTriangles
 void checkRegions
 (
     const std::vector<label>& boundaryRegion,
+    const char* kind,                   // "triangle" or "quad"
     const std::vector<meshPatch>& physicalPatches,
     label myProcNo,
     const std::vector<label>& globalPointIds
@@ -181,7 +262,7 @@ void checkRegions
     for (std::size_t b = 0; b < nTris; ++b)
     {
         const label r = boundaryRegion[b];
-        const std::string triangle = "triangle " + std::to_string(b);
+        const std::string triangle = kind + (' ' + std::to_string(b));
         if (!isInterfaceRegion(r) && std::size_t(r) >= physicalPatches.size())
         {
             badRegion.add([&]
@@ -209,22 +290,25 @@ void checkRegions
     {
         throw FatalError
         (
-            msg() << badRegion.count << " boundary triangles have an invalid"
-                " region (first: " << badRegion.first << ")",
+            msg() << badRegion.count << " boundary " << kind << "s have an"
+                " invalid region (first: " << badRegion.first << ")",
             where
         );
     }
 }
 
 
-//- Check the input sizes, indices, tet volumes, point usage, patches and
-//  regions (the tets and the surface are matched afterwards).
+//- Check the input sizes, indices, cell volumes, point usage, patches and
+//  regions (the cells and the boundary are matched afterwards).
 void checkInput
 (
     const std::vector<point3>& points,
     const std::vector<tetVerts>& tets,
+    const std::vector<prismVerts>& prisms,
     const std::vector<triVerts>& boundaryTriangles,
     const std::vector<label>& boundaryRegion,
+    const std::vector<quadVerts>& boundaryQuads,
+    const std::vector<label>& quadRegion,
     const std::vector<meshPatch>& physicalPatches,
     label myProcNo,
     const std::vector<label>& globalPointIds
@@ -232,12 +316,13 @@ void checkInput
 {
     checkSizes
     (
-        points.size(), boundaryTriangles.size(), boundaryRegion, myProcNo,
-        globalPointIds
+        points.size(), boundaryTriangles.size(), boundaryRegion,
+        boundaryQuads.size(), quadRegion, myProcNo, globalPointIds
     );
     checkPatchNames(physicalPatches);
-    checkTetsAndTriangles(points, tets, boundaryTriangles);
-    checkRegions(boundaryRegion, physicalPatches, myProcNo, globalPointIds);
+    checkCellsAndFaces(points, tets, prisms, boundaryTriangles, boundaryQuads);
+    checkRegions(boundaryRegion, "triangle", physicalPatches, myProcNo, globalPointIds);
+    checkRegions(quadRegion, "quad", physicalPatches, myProcNo, globalPointIds);
 }
 
 
@@ -431,14 +516,26 @@ pmsh::tetPolyMesh pmsh::tetsToPolyMesh
     const std::vector<label>& boundaryRegion,
     const std::vector<meshPatch>& physicalPatches,
     label myProcNo,
-    const std::vector<label>& globalPointIds
+    const std::vector<label>& globalPointIds,
+    const std::vector<prismVerts>& prisms,
+    const std::vector<quadVerts>& boundaryQuads,
+    const std::vector<label>& quadRegion
 )
 {
     checkInput
     (
-        points, tets, boundaryTriangles, boundaryRegion, physicalPatches,
-        myProcNo, globalPointIds
+        points, tets, prisms, boundaryTriangles, boundaryRegion,
+        boundaryQuads, quadRegion, physicalPatches, myProcNo, globalPointIds
     );
+    if (!prisms.empty() || !boundaryQuads.empty())
+    {
+        return detail::mixedCellsToPolyMesh
+        (
+            std::move(points), tets, prisms, boundaryTriangles,
+            boundaryRegion, boundaryQuads, quadRegion, physicalPatches,
+            myProcNo, globalPointIds
+        );
+    }
     const tetFaceMatch match = fittingTetFaces
     (
         points.size(), tets, boundaryTriangles,

@@ -5,10 +5,17 @@
   library (testMeshes.H), and every result is checked against OpenFOAM's
   rules: face blocks, owner < neighbour, upper-triangular order, normals
   from owner to neighbour and out of the domain, patch layout, and
-  processor faces that are reverseFace of each other.
+  processor faces that are reverseFace of each other. The same for tets on
+  prism layers (layerMeshes.H: faces of 3 and 4 points), and such a mesh
+  written through foamRankMesh must pass the real checkMesh.
 \*---------------------------------------------------------------------------*/
 
 #include "tetsToPolyMesh.H"
+#include "foamMeshOutput.H"
+#include "foamShims.H"
+#include "IStringStream.H"
+#include "layerMeshes.H"
+#include "prismFaces.H"
 #include "testMeshes.H"
 #include "testUtilities.H"
 
@@ -16,6 +23,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
 #include <numeric>
 
 using namespace pmsh;
@@ -692,4 +702,401 @@ TEST(tetsToPolyMesh, globalPointIdsOfWrongSizeAreAnError)
     in.globalIds.pop_back();
     const std::string e = errorOf([&]() { build(in, boxPatches(), 0); });
     EXPECT_NE(e.find("global point ids given"), std::string::npos) << e;
+}
+
+
+// * * * * * * * * * * * * Prism layers (tets and prisms) * * * * * * * * * //
+
+namespace
+{
+
+//- Every OpenFOAM ordering and orientation rule, checked on a mesh of tets
+//  and prisms (cells of in, tets first), with faces of 3 and 4 points.
+void expectValidLayeredPolyMesh(const tetPolyMesh& mesh, const layeredRankInput& in)
+{
+    const auto& p = mesh.points;
+    const label nInt = mesh.nInternalFaces();
+    const std::size_t nCells = in.tets.size() + in.prisms.size();
+
+    ASSERT_EQ(mesh.nCells, label(nCells));
+    ASSERT_EQ(mesh.nPrisms, label(in.prisms.size()));
+    ASSERT_EQ(mesh.owner.size(), mesh.faces.size());
+    for (std::size_t q = 0; q < mesh.quads.size(); ++q)
+    {
+        ASSERT_GE(mesh.quads[q].face, 0);
+        ASSERT_LT(mesh.quads[q].face, mesh.nFaces());
+        if (q > 0)
+        {
+            ASSERT_LT(mesh.quads[q - 1].face, mesh.quads[q].face) << "quads not ascending";
+        }
+    }
+
+    std::vector<std::vector<label>> cellPts(nCells);
+    std::vector<point3> C(nCells);
+    for (std::size_t c = 0; c < nCells; ++c)
+    {
+        cellPts[c] = in.cellPoints(c);
+        C[c] = centroid(p, cellPts[c]);
+    }
+    auto onCell = [&](label c, label v)
+    {
+        return std::find(cellPts[c].begin(), cellPts[c].end(), v) != cellPts[c].end();
+    };
+
+    std::vector<vector3> sumS(nCells, {0, 0, 0});
+    std::vector<double> sumMagS(nCells, 0);
+    std::vector<int> nCellFaces(nCells, 0);
+    label nFacePoints = 0;
+    for (label f = 0; f < mesh.nFaces(); ++f)
+    {
+        const std::vector<label> face = facePointsOf(mesh, f);
+        nFacePoints += label(face.size());
+        const label own = mesh.owner[f];
+        ASSERT_GE(own, 0);
+        ASSERT_LT(own, mesh.nCells);
+        const vector3 S = areaVector(p, face);
+        const point3 fc = centroid(p, face);
+        for (label v : face)
+        {
+            EXPECT_TRUE(onCell(own, v)) << "face " << f << " has a point not on its owner";
+        }
+        sumS[own] = sumS[own] + S;
+        sumMagS[own] += std::sqrt(magSqr(S));
+        ++nCellFaces[own];
+
+        if (f < nInt)
+        {
+            const label nei = mesh.neighbour[f];
+            ASSERT_LT(own, nei) << "face " << f;
+            ASSERT_LT(nei, mesh.nCells) << "face " << f;
+            for (label v : face)
+            {
+                EXPECT_TRUE(onCell(nei, v)) << "face " << f << " has a point not on its neighbour";
+            }
+            EXPECT_GT(dot(S, C[nei] - C[own]), 0)
+                << "internal face " << f << " does not point owner->neighbour";
+            sumS[nei] = sumS[nei] - S;
+            sumMagS[nei] += std::sqrt(magSqr(S));
+            ++nCellFaces[nei];
+            if (f > 0)
+            {
+                const auto prev = std::make_pair(mesh.owner[f - 1], mesh.neighbour[f - 1]);
+                EXPECT_LT(prev, std::make_pair(own, nei))
+                    << "internal faces not in strict (owner, neighbour) order at " << f;
+            }
+        }
+        else
+        {
+            EXPECT_GT(dot(S, fc - C[own]), 0)
+                << "boundary face " << f << " does not point out of the domain";
+        }
+    }
+
+    for (std::size_t c = 0; c < nCells; ++c)
+    {
+        const bool prism = c >= in.tets.size();
+        EXPECT_EQ(nCellFaces[c], prism ? 5 : 4) << "cell " << c;
+        EXPECT_LT(std::sqrt(magSqr(sumS[c])), 1e-12*sumMagS[c])
+            << (prism ? "prism" : "tet") << " cell " << c << " not closed";
+    }
+    // 3 points a triangle, 4 a quad: the quads are exactly the faces of 4
+    EXPECT_EQ(nFacePoints, 3*mesh.nFaces() + label(mesh.quads.size()));
+
+    label start = nInt;
+    for (const meshPatch& pp : mesh.patches)
+    {
+        EXPECT_EQ(pp.start, start) << pp.name;
+        EXPECT_GE(pp.size, 0) << pp.name;
+        start += pp.size;
+    }
+    EXPECT_EQ(start, mesh.nFaces());
+}
+
+
+//- The boundary faces (triangles and quads) of each region of in.
+std::map<label, label> facesPerRegion(const layeredRankInput& in)
+{
+    std::map<label, label> n;
+    for (label r : in.triRegions) ++n[r];
+    for (label r : in.quadRegions) ++n[r];
+    return n;
+}
+
+
+//- Split the cells of m at x = xSplit by centroid: ranks 0 and 1.
+std::vector<int> twoSlabs(const layeredMesh& m, double xSplit)
+{
+    std::vector<int> rank;
+    for (std::size_t c = 0; c < m.nCells(); ++c)
+    {
+        rank.push_back(centroid(m.points, m.cellPoints(c))[0] < xSplit ? 0 : 1);
+    }
+    return rank;
+}
+
+} // End anonymous namespace
+
+
+TEST(tetsToPolyMesh, prismFaceTableIsOpenFOAMsPrismModel)
+{
+    // cellModels' prism: 3(0 2 1) 3(3 4 5) 4(0 3 5 2) 4(1 2 5 4) 4(0 1 4 3)
+    const prismVerts c = {10, 11, 12, 13, 14, 15};
+    const std::vector<std::vector<label>> expected =
+        {{10, 12, 11}, {13, 14, 15}, {10, 13, 15, 12}, {11, 12, 15, 14}, {10, 11, 14, 13}};
+    for (int f = 0; f < 5; ++f)
+    {
+        quadVerts v;
+        const int n = prismFace(c, f, v);
+        EXPECT_EQ(std::vector<label>(v.begin(), v.begin() + n), expected[f]) << "face " << f;
+    }
+}
+
+
+TEST(tetsToPolyMesh, tetsOnTwoPrismLayersAreValid)
+{
+    const layeredMesh m = layeredBlock(3, 2, 2, 2);
+    const layeredRankInput in = makeLayeredRankInput(m, {}, 0, boxRegion);
+    ASSERT_FALSE(in.quads.empty());
+    const tetPolyMesh mesh = build(in, boxPatches());
+    expectValidLayeredPolyMesh(mesh, in);
+
+    // 2 levels of 2 prisms per square on the 3x2 wall
+    EXPECT_EQ(mesh.nPrisms, 2*2*3*2);
+    // Every cell face once: 4 a tet, 5 a prism
+    const label nInt = mesh.nInternalFaces();
+    EXPECT_EQ(4*label(in.tets.size()) + 5*mesh.nPrisms, 2*nInt + (mesh.nFaces() - nInt));
+
+    // Quads: the internal ones between prisms, and the boundary ones
+    label nInternalQuads = 0;
+    for (const quadFace& q : mesh.quads)
+    {
+        nInternalQuads += q.face < nInt;
+    }
+    EXPECT_EQ(label(mesh.quads.size()) - nInternalQuads, label(in.quads.size()));
+    // Per level: 3*2 diagonals and 2*3*2 - 3 - 2 inner grid edges
+    EXPECT_EQ(nInternalQuads, 2*(6 + (2*3*2 - 3 - 2)));
+
+    // Every patch complete: as many faces as the input has in its region
+    const std::map<label, label> expected = facesPerRegion(in);
+    for (std::size_t pi = 0; pi < mesh.patches.size(); ++pi)
+    {
+        const auto it = expected.find(label(pi));
+        EXPECT_EQ(mesh.patches[pi].size, it == expected.end() ? 0 : it->second)
+            << mesh.patches[pi].name;
+    }
+    // The wall (zMin) is the prisms' base triangles
+    EXPECT_EQ(mesh.patches[5].size, 2*3*2);
+    for (label f = mesh.patches[5].start; f < mesh.patches[5].start + mesh.patches[5].size; ++f)
+    {
+        EXPECT_EQ(facePointsOf(mesh, f).size(), 3u);
+        EXPECT_GE(mesh.owner[f], label(in.tets.size())) << "wall face " << f << " not on a prism";
+    }
+}
+
+
+TEST(tetsToPolyMesh, layeredMeshDoesNotDependOnBoundaryFaceOrder)
+{
+    const layeredMesh m = layeredBlock(2, 2, 2, 1);
+    layeredRankInput in = makeLayeredRankInput(m, {}, 0, boxRegion);
+    const tetPolyMesh a = build(in, boxPatches());
+    std::reverse(in.quads.begin(), in.quads.end());
+    std::reverse(in.quadRegions.begin(), in.quadRegions.end());
+    std::reverse(in.tris.begin(), in.tris.end());
+    std::reverse(in.triRegions.begin(), in.triRegions.end());
+    const tetPolyMesh b = build(in, boxPatches());
+    ASSERT_EQ(a.nFaces(), b.nFaces());
+    for (label f = 0; f < a.nFaces(); ++f)
+    {
+        EXPECT_EQ(facePointsOf(a, f), facePointsOf(b, f)) << "face " << f;
+        EXPECT_EQ(a.owner[f], b.owner[f]) << "face " << f;
+    }
+}
+
+
+TEST(tetsToPolyMesh, layeredProcessorFacesAreReverseFaceOfEachOther)
+{
+    // Split through the prisms and the tets: the interface has both
+    const layeredMesh m = layeredBlock(4, 2, 2, 2);
+    const std::vector<int> ranks = twoSlabs(m, 2.2);
+    std::vector<layeredRankInput> in;
+    std::vector<tetPolyMesh> mesh;
+    for (int r = 0; r < 2; ++r)
+    {
+        in.push_back(makeLayeredRankInput(m, ranks, r, boxRegion));
+        mesh.push_back(build(in.back(), boxPatches(), r));
+        expectValidLayeredPolyMesh(mesh.back(), in.back());
+    }
+    const meshPatch& pa = mesh[0].patches.back();
+    const meshPatch& pb = mesh[1].patches.back();
+    ASSERT_EQ(pa.name, processorPatchName(0, 1));
+    ASSERT_EQ(pb.name, processorPatchName(1, 0));
+    ASSERT_EQ(pa.size, pb.size);
+
+    std::size_t nTris = 0, nQuads = 0;
+    std::vector<label> previousKey;
+    for (label i = 0; i < pa.size; ++i)
+    {
+        const std::vector<label> fa = facePointsOf(mesh[0], pa.start + i);
+        const std::vector<label> fb = facePointsOf(mesh[1], pb.start + i);
+        ASSERT_EQ(fa.size(), fb.size()) << "face " << i;
+        const std::size_t n = fa.size();
+        (n == 3 ? nTris : nQuads)++;
+        std::vector<label> ga(n), gb(n);
+        for (std::size_t k = 0; k < n; ++k)
+        {
+            ga[k] = in[0].globalIds[fa[k]];
+            gb[k] = in[1].globalIds[fb[k]];
+            // The same point in space
+            EXPECT_EQ(mesh[0].points[fa[k]], m.points[ga[k]]);
+            EXPECT_EQ(mesh[1].points[fb[k]], m.points[gb[k]]);
+        }
+        // reverseFace: vertex 0 kept, the rest reversed
+        for (std::size_t k = 0; k < n; ++k)
+        {
+            EXPECT_EQ(ga[k], gb[(n - k) % n]) << "face " << i << " point " << k;
+        }
+        EXPECT_EQ(ga[0], *std::min_element(ga.begin(), ga.end())) << "face " << i;
+
+        // Sorted by the sorted global ids, triangles (led by -1) first
+        std::vector<label> key = ga;
+        std::sort(key.begin(), key.end());
+        if (n == 3) key.insert(key.begin(), -1);
+        EXPECT_LT(previousKey, key) << "face " << i;
+        previousKey = key;
+    }
+    EXPECT_GT(nTris, 0u);
+    EXPECT_GT(nQuads, 0u);
+}
+
+
+TEST(tetsToPolyMesh, missingBoundaryQuadIsAnError)
+{
+    const layeredMesh m = layeredBlock(2, 1, 2, 1);
+    layeredRankInput in = makeLayeredRankInput(m, {}, 0, boxRegion);
+    in.quads.pop_back();
+    in.quadRegions.pop_back();
+    EXPECT_FATAL(build(in, boxPatches()), "cell faces are on no other cell");
+}
+
+
+TEST(tetsToPolyMesh, reversedOrTwistedBoundaryQuadIsAnError)
+{
+    const layeredMesh m = layeredBlock(2, 1, 2, 1);
+    layeredRankInput in = makeLayeredRankInput(m, {}, 0, boxRegion);
+    std::reverse(in.quads[0].begin(), in.quads[0].end());
+    EXPECT_FATAL(build(in, boxPatches()), "not oriented outward");
+    std::reverse(in.quads[0].begin(), in.quads[0].end());
+    std::swap(in.quads[0][1], in.quads[0][2]);
+    EXPECT_FATAL(build(in, boxPatches()), "not oriented outward");
+}
+
+
+TEST(tetsToPolyMesh, boundaryQuadOnAnInternalFaceIsAnError)
+{
+    const layeredMesh m = layeredBlock(2, 1, 2, 1);
+    layeredRankInput in = makeLayeredRankInput(m, {}, 0, boxRegion);
+    // A side quad between two prisms of one level: (a b b' a') of prism 0's
+    // face 2 in the library's table is shared with its neighbour
+    const tetPolyMesh mesh = build(in, boxPatches());
+    const quadFace& q = mesh.quads.front();
+    ASSERT_LT(q.face, mesh.nInternalFaces());
+    const triVerts& t = mesh.faces[q.face];
+    in.quads.push_back({t[0], t[1], t[2], q.fourth});
+    in.quadRegions.push_back(0);
+    EXPECT_FATAL(build(in, boxPatches()), "lie on a face between two cells");
+}
+
+
+TEST(tetsToPolyMesh, negativePrismIsAnError)
+{
+    const layeredMesh m = layeredBlock(2, 1, 1, 1);
+    layeredRankInput in = makeLayeredRankInput(m, {}, 0, boxRegion);
+    prismVerts& p = in.prisms[1];
+    p = {p[3], p[4], p[5], p[0], p[1], p[2]};
+    EXPECT_FATAL(build(in, boxPatches()), "prisms are not positive");
+}
+
+
+TEST(tetsToPolyMesh, pointOnlyOnPrismsIsUsed)
+{
+    // The wall points are on prisms only: not "unused"; a point on nothing is
+    const layeredMesh m = layeredBlock(1, 1, 1, 1);
+    layeredRankInput in = makeLayeredRankInput(m, {}, 0, boxRegion);
+    EXPECT_NO_THROW(build(in, boxPatches()));
+    in.points.push_back({9, 9, 9});
+    EXPECT_FATAL(build(in, boxPatches()), "used by no tet or prism");
+}
+
+
+TEST(tetsToPolyMesh, tetOnlyMeshHasNoQuads)
+{
+    const tetPolyMesh mesh = build(makeRankInput(kuhnGrid(2, 2, 1), {}, 0, boxRegion), boxPatches());
+    EXPECT_TRUE(mesh.quads.empty());
+    EXPECT_EQ(mesh.nPrisms, 0);
+    EXPECT_EQ(mesh.quads.capacity(), 0u);
+}
+
+
+// The end-to-end check: a layered mesh given to OpenFOAM by foamRankMesh,
+// written into a case, judged by the real checkMesh
+TEST(foamRankMesh, layeredMeshPassesCheckMesh)
+{
+    const layeredMesh m = layeredBlock(3, 2, 2, 2);
+    const layeredRankInput in = makeLayeredRankInput(m, {}, 0, boxRegion);
+    tetPolyMesh mesh = build(in, boxPatches());
+    const label nTets = label(in.tets.size()), nPrisms = mesh.nPrisms;
+    // Zones: the prisms' after the tets'
+    mesh.zoneNames = {"block", "layers"};
+    mesh.cellZone.assign(nTets, 0);
+    mesh.cellZone.resize(nTets + nPrisms, 1);
+    mesh.zonePairs = {{0, 1}};
+
+    const tempDir dir("layeredCheckMesh");
+    const std::string controls =
+        "application none; startFrom startTime; startTime 0; stopAt endTime;"
+        " endTime 1; deltaT 1; writeControl timeStep; writeInterval 1;"
+        " writeFormat binary; writePrecision 17; writeCompression off;"
+        " timeFormat general; timePrecision 6; runTimeModifiable false;\n";
+    auto dictFile = [&](const std::string& name, const std::string& body)
+    {
+        dir.file
+        (
+            "system/" + name,
+            "FoamFile\n{\n    version 2.0;\n    format ascii;\n"
+            "    class dictionary;\n    object " + name + ";\n}\n" + body
+        );
+    };
+    dictFile("controlDict", controls);
+    // checkMesh makes an fvMesh: it reads these, empty will do
+    dictFile("fvSchemes", "ddtSchemes {} gradSchemes {} divSchemes {}"
+        " laplacianSchemes {} interpolationSchemes {} snGradSchemes {}\n");
+    dictFile("fvSolution", "\n");
+    {
+        const std::filesystem::path casePath(dir.path());
+        std::unique_ptr<Foam::Time> time
+        (
+            foam::newTime
+            (
+                Foam::dictionary(Foam::IStringStream(controls)()),
+                casePath.parent_path().string(), casePath.filename().string()
+            )
+        );
+        const foamRankMesh foamMesh(*time, std::move(mesh));
+        EXPECT_EQ(foamMesh().nCells(), nTets + nPrisms);
+        foamMesh.write();
+    }
+
+    const auto [log, status] = runFoam("checkMesh -case " + dir.path());
+    EXPECT_EQ(status, 0) << log;
+    EXPECT_HAS(log, "Mesh OK.");
+    auto count = [&](const std::string& what) -> long
+    {
+        const std::size_t at = log.find("    " + what + ":");
+        return at == std::string::npos ? -1 : std::stol(log.substr(at + what.size() + 5));
+    };
+    EXPECT_EQ(count("prisms"), nPrisms) << log;
+    EXPECT_EQ(count("tetrahedra"), nTets) << log;
+    // The prisms are the second zone
+    const std::string zones = readFile(dir/"constant/polyMesh/cellZones");
+    EXPECT_HAS(zones, "layers");
 }
