@@ -458,17 +458,17 @@ patchLayerReport gatheredReport
 void logLayerReport(const layerReport& report)
 {
     using namespace Foam;
-    Info<< "    " << setw(16) << "patch" << setw(10) << "faces" << setw(8) << "layers"
-        << setw(11) << "coverage" << "  first layer min/avg/max"
-        << "     thickness min/avg/max\n";
+    Info<< "    " << pmsh::left << setw(16) << "patch" << pmsh::right << setw(10)
+        << "faces" << setw(8) << "layers" << setw(10) << "coverage"
+        << "   first layer min/avg/max        thickness min/avg/max\n";
     for (const patchLayerReport& r : report.patches)
     {
-        Info<< "    " << setw(16) << r.patch.c_str() << setw(10) << label(r.faces)
-            << setw(8) << r.layers << setw(9)
-            << std::round(1000*r.coverage())/10 << " %  "
+        Info<< "    " << pmsh::left << setw(16) << r.patch.c_str() << pmsh::right
+            << setw(10) << label(r.faces) << setw(8) << r.layers << setw(8)
+            << std::round(1000*r.coverage())/10 << " %   " << setprecision(3)
             << r.firstLayer[0] << " / " << r.firstLayer[1] << " / " << r.firstLayer[2]
-            << "   " << r.thickness[0] << " / " << r.thickness[1] << " / "
-            << r.thickness[2] << nl;
+            << "      " << r.thickness[0] << " / " << r.thickness[1] << " / "
+            << r.thickness[2] << setprecision(6) << nl;
     }
     Info<< "    prisms: " << label(report.prisms) << "; points thinned at sharp edges "
         << report.thinned.nFeatureLimited << ", by gaps " << report.thinned.nGapLimited
