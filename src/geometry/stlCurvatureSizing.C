@@ -3,6 +3,7 @@
   over the surface (see stlGeometry.H).
 \*---------------------------------------------------------------------------*/
 
+#include "stlGeometry.H"
 #include "stlGeometryImpl.H"
 
 #include <algorithm>

@@ -4,6 +4,7 @@
   mesh in stlNetgenMesh.C.
 \*---------------------------------------------------------------------------*/
 
+#include "stlGeometry.H"
 #include "stlGeometryImpl.H"
 #include "pmshError.H"
 #include "matchByPoints.H"
@@ -39,7 +40,7 @@ double boundingBoxDiagonal(const std::vector<point3>& points)
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
-void pmsh::stlGeometry::impl::buildTriangleTrees()
+void pmsh::stlGeometryImpl::buildTriangleTrees()
 {
     const label nt = surface.nTriangles();
     std::vector<boxTree::entry> all(nt);
@@ -58,7 +59,7 @@ void pmsh::stlGeometry::impl::buildTriangleTrees()
 }
 
 
-void pmsh::stlGeometry::impl::buildRegionEdges
+void pmsh::stlGeometryImpl::buildRegionEdges
 (
     const std::vector<std::array<label, 2>>& featureEdgeTriangles
 )

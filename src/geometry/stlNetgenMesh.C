@@ -4,6 +4,7 @@
   Netgen itself is behind netgenInterface.
 \*---------------------------------------------------------------------------*/
 
+#include "stlGeometry.H"
 #include "stlGeometryImpl.H"
 #include "netgenInterface.H"
 #include "pmshError.H"

@@ -1,3 +1,4 @@
+#include "wallLayers.H"
 #include "layerStars.H"
 
 #include <algorithm>

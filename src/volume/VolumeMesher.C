@@ -8,7 +8,7 @@
 #include "surfaceTopology.H"
 #include "pmshError.H"
 #include "tetFaceMatching.H"
-#include "childProcess.H"
+#include "meshingStep.H"
 
 #include <algorithm>
 #include <cstring>

@@ -1,4 +1,5 @@
 #include "childProcess.H"
+#include "meshingStep.H"
 #include "streamManip.H"
 #include "pmshError.H"
 
@@ -36,92 +37,6 @@ enum : char { resultFollows = 0, errorFollows = 1 };
 // The exit status of a child whose parent died before it could ask to
 // die with it (it has no one to mesh for)
 constexpr int orphanedExit = 4;
-
-//- The step a child is in, in memory shared with its parent: the parent
-//  reads it when it logs progress, the child writes it whenever it likes,
-//  with no pipe traffic and no thread. The sequence number is odd while
-//  the text is being written, so the parent never logs half a step.
-struct sharedStep
-{
-    std::atomic<unsigned> sequence;
-    char text[252];
-};
-
-// The child's page; nullptr in the parent, where reportMeshingStep does
-// nothing
-sharedStep* childStep = nullptr;
-
-void writeStep(sharedStep& shared, const std::string& step)
-{
-    // One writer at a time (a backend may report from a thread of its own)
-    static std::mutex writing;
-    const std::lock_guard<std::mutex> lock(writing);
-    shared.sequence.fetch_add(1, std::memory_order_acq_rel);
-    const std::size_t n = std::min(step.size(), sizeof(shared.text) - 1);
-    std::memcpy(shared.text, step.data(), n);
-    shared.text[n] = 0;
-    shared.sequence.fetch_add(1, std::memory_order_acq_rel);
-}
-
-// The step, or `previous` when the child is writing it just now
-std::string readStep(const sharedStep& shared, const std::string& previous)
-{
-    const unsigned before = shared.sequence.load(std::memory_order_acquire);
-    if (before % 2)
-    {
-        return previous;
-    }
-    char text[sizeof(shared.text)];
-    std::memcpy(text, shared.text, sizeof(text));
-    text[sizeof(text) - 1] = 0;
-    std::atomic_thread_fence(std::memory_order_acquire);
-    return shared.sequence.load(std::memory_order_relaxed) == before ? text : previous;
-}
-
-//- A page of shared memory that the child maps too, after a fork or an
-//  exec (a memfd: an anonymous mapping would not survive the exec).
-class sharedStepPage
-{
-    int fd_ = -1;
-    sharedStep* page_ = nullptr;
-public:
-    sharedStepPage()
-    {
-        fd_ = ::memfd_create("pmshMeshingStep", 0);
-        if (fd_ < 0 || ::ftruncate(fd_, sizeof(sharedStep)) != 0)
-        {
-            return;
-        }
-        page_ = mapStep(fd_);
-        if (page_)
-        {
-            new (page_) sharedStep();
-            writeStep(*page_, "starting");
-        }
-    }
-    ~sharedStepPage()
-    {
-        if (page_) ::munmap(page_, sizeof(sharedStep));
-        if (fd_ >= 0) ::close(fd_);
-    }
-    sharedStepPage(const sharedStepPage&) = delete;
-    sharedStepPage& operator=(const sharedStepPage&) = delete;
-
-    //- The page of the memfd fd, nullptr where it cannot be mapped
-    static sharedStep* mapStep(int fd)
-    {
-        void* page = ::mmap
-        (
-            nullptr, sizeof(sharedStep), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0
-        );
-        return page == MAP_FAILED ? nullptr : static_cast<sharedStep*>(page);
-    }
-
-    //- nullptr where shared memory was refused: progress without steps
-    sharedStep* get() const { return page_; }
-
-    int fd() const { return fd_; }
-};
 
 //- CPU seconds (user + system) and resident bytes of a process, from
 //  /proc; zeros where it cannot be read.
@@ -413,15 +328,6 @@ std::string freshProcessExecutable;
 } // End anonymous namespace
 
 
-void pmsh::reportMeshingStep(const std::string& step)
-{
-    if (childStep)
-    {
-        writeStep(*childStep, step);
-    }
-}
-
-
 double pmsh::progressInterval()
 {
     const char* name = "PMSH_PROGRESS_INTERVAL";
@@ -558,7 +464,7 @@ pmsh::TetMesh pmsh::meshInChildProcess
         what, attempt,
         [&](int replyFd, const sharedStepPage& step)
         {
-            childStep = step.get();
+            reportStepsTo(step.get());
             childMain(replyFd, work);
         },
         [] {}
@@ -677,7 +583,7 @@ int pmsh::mesherChildMain(int argc, char* argv[])
     }
     const int requestFd = std::atoi(argv[2]);
     const int replyFd = std::atoi(argv[3]);
-    childStep = sharedStepPage::mapStep(std::atoi(argv[4]));
+    reportStepsTo(sharedStepPage::mapStep(std::atoi(argv[4])));
     mesherRequest request;
     const bool complete = readRequest(requestFd, request);
     ::close(requestFd);

@@ -7,7 +7,7 @@
 #include "pmshError.H"
 #include "tetQualityPass.H"
 #include "surfaceTopology.H"
-#include "childProcess.H"
+#include "meshingStep.H"
 
 #include <gmsh.h>
 

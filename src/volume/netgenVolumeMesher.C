@@ -5,7 +5,7 @@
 #include "netgenVolumeMesher.H"
 #include "netgenInterface.H"
 #include "pmshError.H"
-#include "childProcess.H"
+#include "meshingStep.H"
 
 #include <chrono>
 #include <condition_variable>

@@ -183,11 +183,7 @@ bool pmsh::qualityPass::passMesh::flip(label t)
     {
         const label a = c[e[0]];
         const label b = c[e[1]];
-        std::vector<label> ring;
-        for (label i = start_[a]; i < start_[a + 1]; ++i)
-        {
-            if (has(pointTets_[i], b)) ring.push_back(pointTets_[i]);
-        }
+        const std::vector<label> ring = edgeTets(a, b);
         if (ring.size() > maxRing) continue;
         const std::vector<label> polygon = ringPoints(ring, a, b);
         if (polygon.empty()) continue;
@@ -243,11 +239,7 @@ bool pmsh::qualityPass::passMesh::insertPoint(label t)
     {
         const label a = c[e[0]];
         const label b = c[e[1]];
-        std::vector<label> ring;
-        for (label i = start_[a]; i < start_[a + 1]; ++i)
-        {
-            if (has(pointTets_[i], b)) ring.push_back(pointTets_[i]);
-        }
+        const std::vector<label> ring = edgeTets(a, b);
         const std::vector<label> polygon = ringPoints(ring, a, b, maxInsertionRing);
         if (polygon.empty()) continue;
         bool allCurrent = true;

@@ -62,14 +62,39 @@ class codeShape(unittest.TestCase):
         self.assertEqual(code, 1, out)
         self.assertIn("include cycle between folders src/core, src/other", out)
 
-    def test_fileCycleInOneFolderIsReported(self):
+    def test_fileCycleIsAnError(self):
+        # x.C and x.H are one node: a.C including b.H while b.C includes
+        # a.H is a cycle, though no header includes the other
         code, out = self.run_tool({
-            "src/core/a.H": '#include "b.H"\n',
-            "src/core/b.H": '#include "a.H"\n',
+            "src/core/a.H": "",
+            "src/core/a.C": '#include "a.H"\n#include "b.H"\n',
+            "src/core/b.H": "",
+            "src/core/b.C": '#include "b.H"\n#include "a.H"\n',
         })
-        self.assertEqual(code, 0, out)
-        self.assertIn("include cycle between files src/core/a, src/core/b", out)
+        self.assertEqual(code, 1, out)
+        self.assertIn("error: include cycle between files src/core/a, src/core/b", out)
 
+    def test_lambdaAtNamespaceScopeIsMeasured(self):
+        body = "".join(f"    int a{i} = {i};\n" for i in range(149))
+        code, out = self.run_tool({
+            "src/core/f.C": "namespace pmsh\n{\nauto longOne = [](int x)\n{\n"
+                            + body + "    return x;\n};\n}\n"})
+        self.assertEqual(code, 1, out)
+        self.assertIn("function lambda longOne: 152 lines (limit 150)", out)
+
+    def test_memberFunctionsInAClassBodyAreMeasured(self):
+        # A constructor with brace member initialisers, and an operator
+        # whose "<" is no template bracket, both defined in a header
+        body = "".join(f"        int a{i} = {i};\n" for i in range(149))
+        code, out = self.run_tool({
+            "src/core/c.H": "namespace pmsh\n{\nclass c\n{\n    int b_, c_;\n"
+                            "public:\n    c(int x)\n    :\n        b_{x},\n"
+                            "        c_{x}\n    {\n" + body + "    }\n"
+                            "    bool operator<(const c& o) const\n    {\n"
+                            + body + "        return false;\n    }\n};\n}\n"})
+        self.assertEqual(code, 1, out)
+        self.assertIn("function c: 151 lines (limit 150)", out)
+        self.assertIn("function operator<: 152 lines (limit 150)", out)
 
 if __name__ == "__main__":
     unittest.main()

@@ -4,6 +4,7 @@
 
 #include "partitionVolume.H"
 #include "childProcess.H"
+#include "meshingStep.H"
 #include "pmshError.H"
 #include "testMeshers.H"
 #include "testUtilities.H"

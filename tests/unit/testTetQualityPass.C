@@ -416,4 +416,33 @@ TEST(tetQualityPass, partitionMeshesGetBetterAndKeepTheirSurface)
 }
 
 
+
+TEST(tetQualityPass, measuresARealMeshAsCheckMesh)
+{
+    // The pass's worst faces of a whole sphere as Netgen meshes it without
+    // its optimiser (a real mesh: thousands of faces, the worst skewness
+    // on an internal one), against checkMesh's formulas written out apart
+    // from the pass (checkMeshMeasuresOf). summary.json's quality, from
+    // the same kernel, is compared with checkMesh itself by the tutorial
+    // test sphere.test_faceMetricsAsCheckMesh.
+    auto g = Geometry::New(std::string(PMSH_TEST_DATA) + "/geometry/sphere.geo");
+    const CoarseMesh coarse = g->coarseMesh({0.3, 0.3});
+    const std::vector<label> cellPart(coarse.tets.size(), 0);
+    const FineSurface s = refinePartSurface(coarse, cellPart, 0, g.get(), 1);
+    volumeMeshParameters p;
+    p.maxCellSize = 0.3/2;
+    p.optimisationSteps = 0;
+    TetMesh m = VolumeMesher::New("netgen")->mesh(s.points, s.triangles, p);
+    ASSERT_GT(m.tets.size(), 1000u);
+    const checkMeshMeasures expected = checkMeshMeasuresOf(m);
+
+    const qualityPassStats stats = improveWorstCells
+    (
+        m, label(s.points.size()), s.triangles, {}, 0
+    );
+    EXPECT_GT(expected.maxNonOrthogonality, 0);
+    EXPECT_NEAR(stats.worstBefore.nonOrthogonality, expected.maxNonOrthogonality, 1e-9);
+    EXPECT_NEAR(stats.worstBefore.skewness, expected.maxSkewness(), 1e-9);
+}
+
 // ************************************************************************* //
