@@ -1,4 +1,5 @@
 #include "wallLayers.H"
+#include "liftedCrossings.H"
 #include "layerStars.H"
 
 #include <algorithm>
@@ -92,6 +93,28 @@ struct layerState
         const point3 a = layers.topPoint(x, f[0]);
         const vector3 after = cross(layers.topPoint(x, f[1]) - a, layers.topPoint(x, f[2]) - a);
         return dot(after, before) >= minLiftedAreaShare*magSqr(before);
+    }
+
+    //- Per triangle, what it crosses once every point is at its top level
+    //  and the interface has risen (liftedCrossings.H).
+    std::vector<label> crossings() const
+    {
+        const auto& triangles = stars.surface().triangles;
+        std::vector<point3> lifted(points().size());
+        for (label p = 0; p < label(lifted.size()); ++p)
+        {
+            lifted[p] = layers.topPoint(points(), p);
+        }
+        std::vector<bool> moved(triangles.size(), false);
+        for (label t = 0; t < label(triangles.size()); ++t)
+        {
+            for (label p : triangles[t])
+            {
+                moved[t] = moved[t] || layers.nLayers[p] > 0
+                    || (!layers.shift.empty() && magSqr(layers.shift[p]) > 0);
+            }
+        }
+        return liftedCrossings(lifted, triangles, moved);
     }
 
     //- Set every thickness below its spec's minThickness to 0.
@@ -252,7 +275,11 @@ point3 wallLayers::levelPoint
 ) const
 {
     const point3& x = points[p];
-    if (k == 0 || nLayers[p] == 0)
+    if (nLayers[p] == 0)
+    {
+        return shift.empty() ? x : x + shift[p];
+    }
+    if (k == 0)
     {
         return x;
     }
@@ -283,6 +310,42 @@ bool validPrism(const std::array<point3, 6>& v)
 namespace
 {
 
+//- Promote the points inside the domain of the interface triangles that
+//  squash or cross a stack's top (interfaceShift.C). Whether any rank
+//  promoted one.
+bool promote
+(
+    const layerState& state,
+    const std::vector<bool>& interfaceOnly,
+    const std::vector<label>& crossing,
+    std::vector<bool>& promoted
+)
+{
+    const layerStars& stars = state.stars;
+    const std::vector<double> promote = stars.minimum
+    (
+        [&](label t, label p)
+        {
+            if (!interfaceOnly[p] || promoted[p] || !stars.isInterface(t))
+            {
+                return layerStars::none;
+            }
+            return crossing[t] != 0 || !state.liftedValid(t) ? -1.0 : layerStars::none;
+        }
+    );
+    bool more = false;
+    for (std::size_t p = 0; p < promote.size(); ++p)
+    {
+        if (promote[p] < 0)
+        {
+            promoted[p] = true;
+            more = true;
+        }
+    }
+    return stars.anyRank(more);
+}
+
+
 //- Halve the thickness round invalid prisms and lifted triangles (after
 //  halvingRounds: set it to 0) until nothing changes on any rank.
 void validityRounds(layerState& state)
@@ -291,9 +354,12 @@ void validityRounds(layerState& state)
     wallLayers& layers = state.layers;
     const label nPoints = layers.thickness.size();
     std::vector<bool> limited(nPoints, false), interfaceLimited(nPoints, false);
+    const std::vector<bool> interfaceOnly = interfaceOnlyPoints(stars);
+    std::vector<bool> promoted(nPoints, false);
     for (label round = 1; ; ++round)
     {
         state.classify();
+        layers.shift = interfaceShift(stars, layers, interfaceOnly, promoted);
         const bool halve = round <= halvingRounds;
         auto shrunk = [&](label p) { return halve ? 0.5*layers.thickness[p] : 0.0; };
         auto lifted = [&](label t, label p, bool interface)
@@ -315,25 +381,47 @@ void validityRounds(layerState& state)
                 return lifted(t, p, false);
             }
         );
+        // Tops of stacks through a triangle nearby, mostly an interface
+        // closer to the wall than the stack is thick
+        const std::vector<label> crossing = state.crossings();
+        auto crossed = [&](label t, label p, bool interface)
+        {
+            if (crossing[t] == 0 || layers.nLayers[p] == 0) return layerStars::none;
+            const bool withInterface = stars.isInterface(t) || stars.isInterface(crossing[t] - 1);
+            return withInterface == interface ? shrunk(p) : layerStars::none;
+        };
+        const std::vector<double> wallCrossingLimit = stars.minimum
+        (
+            [&](label t, label p) { return crossed(t, p, false); }
+        );
+        // An interface triangle that squashes or crosses a stack's top:
+        // its points inside the domain rise with the stacks first
+        // (promoted); stacks thin for it only once none is left to promote
+        const bool promoting = promote(state, interfaceOnly, crossing, promoted);
         const std::vector<double> interfaceLimit = stars.minimum
         (
-            [&](label t, label p) { return lifted(t, p, true); }
+            [&](label t, label p)
+            {
+                if (promoting) return layerStars::none;
+                return std::min(lifted(t, p, true), crossed(t, p, true));
+            }
         );
 
         bool changed = false;
         for (label p = 0; p < nPoints; ++p)
         {
-            const double limit = std::min(wallLimit[p], interfaceLimit[p]);
+            const double ownLimit = std::min(wallLimit[p], wallCrossingLimit[p]);
+            const double limit = std::min(ownLimit, interfaceLimit[p]);
             if (limit < layers.thickness[p])
             {
                 layers.thickness[p] = limit;
                 changed = true;
                 limited[p] = true;
-                if (interfaceLimit[p] < wallLimit[p]) interfaceLimited[p] = true;
+                if (interfaceLimit[p] < ownLimit) interfaceLimited[p] = true;
             }
         }
         layers.stats.nRounds = round;
-        if (!stars.anyRank(changed)) break;
+        if (!stars.anyRank(changed) && !promoting) break;
         smoothThickness(stars, layers.thickness);
         state.dropThinStacks();
     }
@@ -343,10 +431,68 @@ void validityRounds(layerState& state)
 }
 
 
+//- What a stack meets across a partition interface on its edge (u, v),
+//  by the interface triangle n there: the other part's boundary triangle
+//  on that edge. Its stack, if it has one (the side quads are processor
+//  faces, matched by the other part's quads); else its region (the stack
+//  ends at an unlayered triangle, whose region the quads take, as on one
+//  rank). The boundary triangles round the interface's points come from
+//  every rank that holds them (stars.gather).
+class acrossInterface
+{
+public:
+
+    acrossInterface(const layerStars& stars, const wallLayers& layers)
+    :
+        surface_(stars.surface()),
+        round_
+        (
+            stars.gather
+            (
+                [&](label t, label, label& tag, vector3& value)
+                {
+                    if (stars.isInterface(t)) return false;
+                    tag = surface_.region[t];
+                    value = {layers.triangleLayered[t] ? 1.0 : 0.0, 0, 0};
+                    return true;
+                }
+            )
+        )
+    {}
+
+    //- The region of the quads of layered t on edge (u, v), whose other
+    //  triangle here is the interface triangle n.
+    label region(label t, label u, label v, label n) const
+    {
+        const auto& ids = surface_.ids;
+        const triVerts& f = surface_.triangles[t];
+        for (const keyedContribution& c : round_[u])
+        {
+            const bool onEdge =
+                std::find(c.key.begin(), c.key.end(), ids[v]) != c.key.end();
+            const bool mine =
+                std::is_permutation(c.key.begin(), c.key.end(), triangleKey{ids[f[0]], ids[f[1]], ids[f[2]]}.begin());
+            if (onEdge && !mine)
+            {
+                return c.value[0] > 0 ? surface_.region[n] : c.tag;
+            }
+        }
+        return surface_.region[n];
+    }
+
+private:
+
+    const layerSurface& surface_;
+    const std::vector<std::vector<keyedContribution>> round_;
+};
+
+
 //- The prisms of the layered triangles, and the side quads where their
 //  stacks meet unlayered triangles.
-void buildStacks(const layerSurface& surface, wallLayers& layers)
+void buildStacks(const layerStars& stars, wallLayers& layers)
 {
+    const layerSurface& surface = stars.surface();
+    const acrossInterface across(stars, layers);
     const label nTriangles = surface.triangles.size();
     std::map<std::pair<label, label>, std::vector<label>> edgeTriangles;
     for (label t = 0; t < nTriangles; ++t)
@@ -378,12 +524,14 @@ void buildStacks(const layerSurface& surface, wallLayers& layers)
             for (const label n : edgeTriangles.at({std::min(u, v), std::max(u, v)}))
             {
                 if (layers.triangleLayered[n]) continue;
+                const label region =
+                    stars.isInterface(n) ? across.region(t, u, v, n) : surface.region[n];
                 for (int k = 1; k <= L; ++k)
                 {
                     layers.sideFaces.push_back
                     ({
                         {{{v, k - 1}, {u, k - 1}, {u, k}, {v, k}}},
-                        surface.region[n]
+                        region
                     });
                 }
                 break;
@@ -445,7 +593,7 @@ wallLayers growWallLayers(const layerSurface& surface, layerExchange& exchange)
         }
     }
 
-    buildStacks(surface, layers);
+    buildStacks(stars, layers);
     return layers;
 }
 

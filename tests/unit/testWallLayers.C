@@ -5,14 +5,19 @@
   the feature angle, side walls whose lifted triangles would turn over, a
   pipe wall meeting an unlayered inlet, a throat too narrow for layers, and
   the pipe split in two parts (the exchange done in-process, one thread per
-  part) against the one-part run, bit for bit.
+  part) against the one-part run, bit for bit, also where the interface
+  comes closer to the wall than the layers are thick (it rises with them),
+  and an unlayered ceiling closer than the layers (the lifted surface must
+  not cross itself).
 \*---------------------------------------------------------------------------*/
 
 #include "wallLayers.H"
+#include "liftedCrossings.H"
 #include "meshPatch.H"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <condition_variable>
 #include <cstring>
@@ -391,6 +396,56 @@ TEST(wallLayers, platesCloserThanTwiceTheLayersDoNotOverlap)
     EXPECT_LE(topBottom - bottomTop, g*(1 - 2*0.3) + 1e-12);
     EXPECT_GT(layers.stats.nGapLimited, 0);
     expectValidPrisms(s, layers);
+}
+
+
+TEST(wallLayers, stackTopsDoNotRunThroughAnUnlayeredCeilingCloserThanTheStack)
+{
+    // A layered floor under an unlayered ceiling g above it, no gap query:
+    // nothing local to a triangle sees the ceiling from the floor's middle
+    // (the side walls thin only the rim), so only the crossing check of
+    // the lifted surface keeps the tops below it
+    const double g = 0.05;
+    testSurface s;
+    addBox(s, {0, 0, 0}, {1, 1, g}, {10, 10, 1}, true, [](int axis, int side) { return axis == 2 && side == 0 ? 0 : 1; });
+    const wallLayers layers = grow(s, {{0, spec(4, 0.02, 1.2)}});    // 0.086 > g
+
+    std::vector<point3> lifted(s.points.size());
+    std::vector<bool> moved(s.triangles.size(), false);
+    double highestTop = 0;
+    for (label p = 0; p < label(s.points.size()); ++p)
+    {
+        lifted[p] = layers.topPoint(s.points, p);
+        if (s.points[p][2] == 0) highestTop = std::max(highestTop, lifted[p][2]);
+    }
+    for (label t = 0; t < label(s.triangles.size()); ++t)
+    {
+        for (label p : s.triangles[t]) moved[t] = moved[t] || layers.nLayers[p] > 0;
+    }
+    EXPECT_LT(highestTop, g);
+    const std::vector<label> crossing = liftedCrossings(lifted, s.triangles, moved);
+    EXPECT_EQ(std::count(crossing.begin(), crossing.end(), 0), label(crossing.size()));
+    EXPECT_GT(layers.stats.nInvalidLimited, 0);
+    expectValidPrisms(s, layers);
+}
+
+
+TEST(liftedCrossings, findsASegmentThroughATriangleAndNotBesideOrAtItsEnds)
+{
+    const point3 p{0, 0, 0}, q{1, 0, 0}, r{0, 1, 0};
+    EXPECT_TRUE(segmentCrossesTriangle({0.2, 0.2, -1}, {0.2, 0.2, 1}, p, q, r));
+    EXPECT_FALSE(segmentCrossesTriangle({0.8, 0.8, -1}, {0.8, 0.8, 1}, p, q, r));     // beside
+    EXPECT_FALSE(segmentCrossesTriangle({0.2, 0.2, 0}, {0.2, 0.2, 1}, p, q, r));      // an end on it
+    EXPECT_FALSE(segmentCrossesTriangle({0.2, 0.2, 0.5}, {0.2, 0.2, 1}, p, q, r));    // short of it
+    EXPECT_FALSE(segmentCrossesTriangle({-1, 0.2, 0}, {2, 0.2, 0}, p, q, r));         // in its plane
+
+    // Two triangles sharing no point, one through the other; and apart
+    const std::vector<point3> x{p, q, r, {0.2, 0.2, -1}, {0.3, 0.2, 1}, {0.2, 0.3, 1}, {5, 5, 5}};
+    const std::vector<label> crossing = liftedCrossings
+    (
+        x, {{0, 1, 2}, {3, 4, 5}, {6, 4, 5}}, {true, false, false}
+    );
+    EXPECT_EQ(crossing, (std::vector<label>{2, 1, 0}));
 }
 
 
@@ -851,42 +906,52 @@ TEST(wallLayers, twoPartsGiveTheOnePartLayersBitForBit)
 }
 
 
-TEST(wallLayers, liftedInterfaceTrianglesStayValidAndBothSidesAgree)
+TEST(wallLayers, interfaceCloserThanTheLayersRisesWithThemInsteadOfThinningThem)
 {
     // The interface's rings closer than the layers are thick: its lifted
-    // triangles would turn over, so both parts thin the layers there alike
+    // triangles would turn over. Its points inside the domain rise with
+    // the stacks (interfaceShift), alike in both parts, so its triangles
+    // stay valid, nothing crosses, and the layers are the one-part ones
     const int nTheta = 24, nZ = 12, nRings = 4, L = 4;
     const double H = 2;
     const testSurface whole = pipe(0.5, H, nTheta, nZ);
     const std::map<label, layerSpecification> specs{{0, spec(L, 0.02, 1.3)}};   // 0.124 > 3/4 of a ring
+    const layerBits oneBits(whole, grow(whole, specs));
     testSurface parts[2];
     wallLayers split[2];
     growInTwoParts(whole, H, nTheta, nRings, specs, nullptr, parts, split);
 
-    std::map<barycentricId, std::vector<double>> shared[2];
+    std::map<barycentricId, point3> risen[2];
+    std::set<std::vector<std::pair<barycentricId, int>>> prisms;
     for (int r = 0; r < 2; ++r)
     {
-        EXPECT_GT(split[r].stats.nInterfaceLimited, 0) << "part " << r;
+        EXPECT_EQ(split[r].stats.nInterfaceLimited, 0) << "part " << r;
         const testSurface& s = parts[r];
+        std::vector<point3> lifted(s.points.size());
+        std::vector<bool> moved(s.triangles.size(), true);
+        for (label p = 0; p < label(s.points.size()); ++p)
+        {
+            lifted[p] = split[r].topPoint(s.points, p);
+            if (split[r].nLayers[p] == 0 && lifted[p] != s.points[p]) risen[r][s.ids[p]] = lifted[p];
+        }
         for (label t = 0; t < label(s.triangles.size()); ++t)
         {
             if (s.region[t] >= 0) continue;
             EXPECT_GE(liftedAreaShare(s, split[r], t), 0.25) << "interface triangle " << t << " of part " << r;
         }
-        const layerBits bits(s, split[r]);
-        for (label p = 0; p < label(s.points.size()); ++p)
+        const std::vector<label> crossing = liftedCrossings(lifted, s.triangles, moved);
+        EXPECT_EQ(std::count(crossing.begin(), crossing.end(), 0), label(crossing.size())) << "part " << r;
+        const layerBits partBits(s, split[r]);
+        for (const auto& [id, bits] : partBits.points)
         {
-            if (s.points[p][2] == H/2 && split[r].nLayers[p] == L)
-            {
-                shared[r][s.ids[p]] = bits.points.at(s.ids[p]);
-            }
+            ASSERT_TRUE(oneBits.points.count(id));
+            EXPECT_TRUE(sameBits(bits, oneBits.points.at(id))) << "point " << id << " of part " << r;
         }
+        prisms.insert(partBits.prisms.begin(), partBits.prisms.end());
         expectValidPrisms(s, split[r]);
     }
-    ASSERT_EQ(shared[0].size(), std::size_t(nTheta));
-    ASSERT_EQ(shared[1].size(), std::size_t(nTheta));
-    for (const auto& [id, bits] : shared[0])
-    {
-        EXPECT_TRUE(sameBits(bits, shared[1].at(id))) << "point " << id;
-    }
+    EXPECT_EQ(prisms, oneBits.prisms);
+    // Both parts moved the same interface points to the same bits
+    EXPECT_GE(risen[0].size(), std::size_t(nTheta));
+    EXPECT_EQ(risen[0], risen[1]);
 }
