@@ -24,6 +24,10 @@
   (wallLayers.C): it then rises as far as the neighbour that rises most,
   in the mean direction of its neighbours' rise (the largest neighbour's
   own direction would carry a far wall's normal round the interface).
+  Should the risen interface still cross itself where no stack is there
+  to thin (thick stacks in a narrow pipe, whose interface is squeezed
+  from all sides), the rounds scale the whole shift down, on every rank
+  alike.
 
   Every rank that holds a point computes the same bits: a sweep's mean is
   over the point's interface triangles of all ranks (stars.gather), each
@@ -54,7 +58,8 @@ std::vector<vector3> interfaceShift
     const layerStars& stars,
     const wallLayers& layers,
     const std::vector<bool>& interfaceOnly,
-    const std::vector<bool>& promoted
+    const std::vector<bool>& promoted,
+    double scale
 )
 {
     const layerSurface& surface = stars.surface();
@@ -152,16 +157,20 @@ std::vector<vector3> interfaceShift
                 sum = sum + v;
                 ++n;
             }
+            // A promoted point whose neighbours rise in opposed directions
+            // (their mean much shorter than they are) has no direction to
+            // rise in: it keeps the mean
+            const vector3 mean = n > 0 ? (decay/n)*sum : vector3{0, 0, 0};
             next[p] =
-                promoted[p]
+                promoted[p] && 4*magSqr(mean) > magSqr(largest)
               ? std::sqrt(magSqr(largest))*normalised(sum)
-              : n > 0 ? (decay/n)*sum : vector3{0, 0, 0};
+              : mean;
         }
         u.swap(next);
     }
     for (label p = 0; p < nPoints; ++p)
     {
-        if (!interfaceOnly[p]) u[p] = {0, 0, 0};
+        u[p] = interfaceOnly[p] ? scale*u[p] : vector3{0, 0, 0};
     }
     return u;
 }

@@ -117,6 +117,24 @@ struct layerState
         return liftedCrossings(lifted, triangles, moved);
     }
 
+    //- Whether, on any rank, a triangle crosses one with which it has no
+    //  layered point (only the interface's shift moved them).
+    bool interfaceSelfCrossing(const std::vector<label>& crossing) const
+    {
+        const auto& triangles = stars.surface().triangles;
+        const auto layered = [&](label t)
+        {
+            for (label p : triangles[t]) if (layers.nLayers[p] > 0) return true;
+            return false;
+        };
+        bool found = false;
+        for (label t = 0; t < label(triangles.size()) && !found; ++t)
+        {
+            found = crossing[t] != 0 && !layered(t) && !layered(crossing[t] - 1);
+        }
+        return stars.anyRank(found);
+    }
+
     //- Set every thickness below its spec's minThickness to 0.
     void dropThinStacks()
     {
@@ -356,10 +374,11 @@ void validityRounds(layerState& state)
     std::vector<bool> limited(nPoints, false), interfaceLimited(nPoints, false);
     const std::vector<bool> interfaceOnly = interfaceOnlyPoints(stars);
     std::vector<bool> promoted(nPoints, false);
+    double shiftScale = 1;
     for (label round = 1; ; ++round)
     {
         state.classify();
-        layers.shift = interfaceShift(stars, layers, interfaceOnly, promoted);
+        layers.shift = interfaceShift(stars, layers, interfaceOnly, promoted, shiftScale);
         const bool halve = round <= halvingRounds;
         auto shrunk = [&](label p) { return halve ? 0.5*layers.thickness[p] : 0.0; };
         auto lifted = [&](label t, label p, bool interface)
@@ -398,6 +417,10 @@ void validityRounds(layerState& state)
         // its points inside the domain rise with the stacks first
         // (promoted); stacks thin for it only once none is left to promote
         const bool promoting = promote(state, interfaceOnly, crossing, promoted);
+        // The risen interface crossing itself where no stack is there to
+        // thin: the shift is scaled down everywhere, on every rank alike
+        const bool selfCrossing = !promoting && state.interfaceSelfCrossing(crossing);
+        if (selfCrossing) shiftScale *= 0.5;
         const std::vector<double> interfaceLimit = stars.minimum
         (
             [&](label t, label p)
@@ -421,7 +444,7 @@ void validityRounds(layerState& state)
             }
         }
         layers.stats.nRounds = round;
-        if (!stars.anyRank(changed) && !promoting) break;
+        if (!stars.anyRank(changed) && !promoting && !selfCrossing) break;
         smoothThickness(stars, layers.thickness);
         state.dropThinStacks();
     }

@@ -180,14 +180,22 @@ void pmsh::balanceAndLog
     partitionVolumeResult& volume
 )
 {
+    // The cells of the rank's share: its tets and prisms
+    const auto nCells = [&] { return label(share.tets.size() + share.prisms.size()); };
+    volume.nCells = nCells();
     if (!comm.parallel())
     {
         Info << "    serial: nothing to balance\n";
         return;
     }
     const fineBalanceStats stats = balanceFineCells(comm, share);
-    volume.nCells = label(share.tets.size());
-    const minAvgMax n = reduceMinAvgMax(comm, double(share.tets.size()));
+    volume.nCells = nCells();
+    const minAvgMax n = reduceMinAvgMax(comm, double(nCells()));
+    if (comm.sum(std::int64_t(share.prisms.size())) > 0)
+    {
+        Info<< "    prism layers: the fine cells stay in their partitions"
+            << " (balancing a layered mesh is not built yet)\n";
+    }
     Info
         << fixed << setprecision(3)
         << "    largest rank's fine cells over the mean: " << stats.before
