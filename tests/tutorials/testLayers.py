@@ -90,8 +90,8 @@ class layers(CaseTest):
         OK with prisms, every body face layered (coverage 1 in
         summary.json and 100 % in the log), first layer as asked."""
         helper = bodyInBox(methodName="test_stlNp2")
+        helper.cases = self.cases       # its case is kept or removed as ours
         c = helper.body_case("sphereInBox.stl")
-        self.cases.append(c)
         set_patches(c, {"inlet": "type patch;", "outlet": "type patch;",
                         "sides": "type patch;",
                         "body": "type wall; layers 3; firstLayerThickness 0.01;"})
@@ -113,8 +113,8 @@ class layers(CaseTest):
         c.write_format("binary")
         c.run("pmshFoam", np=np)
         c.check_mesh(np=np)
-        self.assertRegex(open(os.path.join(c.dir, "log.pmshFoam")).read(),
-                         r"partition interfaces 0\)")
+        with open(os.path.join(c.dir, "log.pmshFoam")) as f:
+            self.assertRegex(f.read(), r"partition interfaces 0\)")
         return prism_cells(c, np)
 
     def test_prismsAreTheSameAtOneTwoAndFourRanks(self):
