@@ -66,9 +66,10 @@ def prism_cells(case, np):
 class layers(CaseTest):
 
     def test_pipeAllrunGivesPressureDropWithin2Percent(self):
-        """tutorials/pipe as shipped (5 layers on the wall, 2 ranks): Mesh
-        OK, 100 % layer coverage in the log, and the Allrun's pressure drop
-        within 2 % of Hagen-Poiseuille (tetrahedra alone gave +26 %)."""
+        """tutorials/pipe as shipped (12 layers on the wall, 2 ranks): Mesh
+        OK, at least 99 % layer coverage in the log, and the Allrun's
+        pressure drop within 2 % of Hagen-Poiseuille (+1.3 %; tetrahedra
+        alone gave +10.5 % with the same schemes)."""
         c = self.case("pipe")
         env = openfoam_environment()
         env["PATH"] = os.path.dirname(c.pmshFoam) + ":" + env["PATH"]
@@ -80,7 +81,9 @@ class layers(CaseTest):
         self.assertIn("Mesh OK", out)
         with open(os.path.join(c.dir, "log.pmshFoam")) as f:
             log = f.read()
-        self.assertRegex(log, r"(?m)^\s*walls\s+\d+\s+5\s+100(\.0)? %")
+        coverage = re.search(r"(?m)^\s*walls\s+\d+\s+12\s+([\d.]+) %", log)
+        self.assertIsNotNone(coverage, log[-3000:])
+        self.assertGreaterEqual(float(coverage.group(1)), 99)
         dp = re.search(r"dp = ([\d.]+)\s+Hagen-Poiseuille 3.2\s+difference ([-+][\d.]+) %", out)
         self.assertIsNotNone(dp, out[-3000:])
         self.assertLess(abs(float(dp.group(1)) - 3.2) / 3.2, 0.02)
@@ -110,6 +113,8 @@ class layers(CaseTest):
 
     def pipe_prisms(self, np):
         c = self.case("pipe", refinementLevels=1)
+        set_patches(c, {"\"(inlet|outlet)\"": "type patch;",
+                        "walls": "type wall; layers 5; firstLayerThickness 0.01;"})
         c.write_format("binary")
         c.run("pmshFoam", np=np)
         c.check_mesh(np=np)
@@ -118,7 +123,7 @@ class layers(CaseTest):
         return prism_cells(c, np)
 
     def test_prismsAreTheSameAtOneTwoAndFourRanks(self):
-        """The pipe at r = 1: the prisms, by the bits of their six points,
+        """The pipe at r = 1 with 5 layers: the prisms, by the bits of their six points,
         are the same serially and on 2 and 4 ranks (normals and
         thicknesses agree across processor boundaries, and the layers run
         through them)."""

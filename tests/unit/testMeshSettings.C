@@ -371,8 +371,17 @@ TEST_F(meshSettingsTest, patchesAreValidated)
     err = errorFor(minimal() + "patches\n{\n    inlet { type patch; tpye wall; }\n}\n");
     EXPECT_HAS(err, "Unknown entry 'tpye' in patch 'inlet'. Did you mean 'type'?");
     EXPECT_HAS(err, "Valid entries of a patch are: 'type' (patch, wall,");
-    EXPECT_HAS(err, "and 'maxCellSize'");
+    EXPECT_HAS(err, "'maxCellSize' (the coarse cell size on the patch)");
+    EXPECT_HAS(err, "and the prism layers' layers, firstLayerThickness,");
     EXPECT_HAS(err, "at line 5.");
+
+    // A layer entry is checked when the dictionary is read, before meshing
+    err = errorFor(minimal() + "patches\n{\n    ball { type wall; layers 5; }\n}\n");
+    EXPECT_HAS(err, "ball");
+    EXPECT_HAS(err, "firstLayerThickness");
+    EXPECT_EQ(read(minimal() + "patches { ball { type wall; layers 3; firstLayerThickness 0.01; } }\n")
+        .patchLayers("ball").nLayers, 3);
+    EXPECT_EQ(read(minimal() + "patches { ball { type wall; } }\n").patchLayers("ball").nLayers, 0);
 
     for (const std::string& type : meshSettingsPatchTypes())
     {
