@@ -1,11 +1,11 @@
 #include "prismFaces.H"
 #include "matchByPoints.H"
+#include "patchLayout.H"
 #include "pmshError.H"
 #include "tetFaceMatching.H"
 
 #include <algorithm>
 #include <sstream>
-#include <tuple>
 
 namespace
 {
@@ -382,41 +382,17 @@ void addPhysicalPatches
             && !isInterfaceRegion(r) ? r : -1;
     };
 
-    // Counting sort by patch: cell faces in id order stay in owner order
-    mesh.patches = physicalPatches;
-    for (meshPatch& p : mesh.patches)
-    {
-        p.size = 0;
-    }
-    for (faceId id = 0; id < m.nCellFaces; ++id)
-    {
-        const label p = physicalPatchOf(id);
-        if (p >= 0)
+    // Cell faces in id order stay in owner order
+    detail::layOutPhysicalPatches
+    (
+        mesh, physicalPatches, m.nCellFaces, physicalPatchOf,
+        [&](std::size_t facei, faceId id)
         {
-            ++mesh.patches[p].size;
-        }
-    }
-    std::vector<std::size_t> next;
-    label start = mesh.nFaces();
-    for (meshPatch& p : mesh.patches)
-    {
-        p.start = start;
-        next.push_back(std::size_t(start));
-        start += p.size;
-    }
-    mesh.faces.resize(start);
-    mesh.owner.resize(start);
-    for (faceId id = 0; id < m.nCellFaces; ++id)
-    {
-        const label p = physicalPatchOf(id);
-        if (p >= 0)
-        {
-            const std::size_t facei = next[p]++;
             quadVerts v;
             setFace(mesh, facei, v, m.pointsOf(id, v));
             mesh.owner[facei] = m.cellOf(id);
         }
-    }
+    );
 }
 
 
@@ -453,17 +429,7 @@ void addProcessorPatches
     const std::vector<label>& globalPointIds
 )
 {
-    struct processorFace
-    {
-        label neighbProcNo;
-        std::array<label, 4> key;
-        faceId id;
-
-        bool operator<(const processorFace& o) const
-        {
-            return std::tie(neighbProcNo, key) < std::tie(o.neighbProcNo, o.key);
-        }
-    };
+    using processorFace = detail::processorFace<4, faceId>;
     std::vector<processorFace> faces;
     for (faceId id = 0; id < m.nCellFaces; ++id)
     {
@@ -491,12 +457,7 @@ void addProcessorPatches
         const bool newPatch = i == 0 || pf.neighbProcNo != faces[i - 1].neighbProcNo;
         if (newPatch)
         {
-            meshPatch p;
-            p.name = processorPatchName(myProcNo, pf.neighbProcNo);
-            p.type = "processor";
-            p.start = mesh.nFaces();
-            p.neighbProcNo = pf.neighbProcNo;
-            mesh.patches.push_back(p);
+            detail::addProcessorPatch(mesh, myProcNo, pf.neighbProcNo);
         }
         if
         (

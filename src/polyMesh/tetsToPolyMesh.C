@@ -1,11 +1,11 @@
 #include "tetsToPolyMesh.H"
+#include "patchLayout.H"
 #include "pmshError.H"
 #include "prismFaces.H"
 #include "tetFaceMatching.H"
 
 #include <algorithm>
 #include <limits>
-#include <tuple>
 #include <unordered_set>
 
 namespace
@@ -387,40 +387,16 @@ void addPhysicalPatches
         return isInterfaceRegion(r) ? -1 : r;
     };
 
-    // Counting sort by patch: tet faces in id order stay in owner order
-    mesh.patches = physicalPatches;
-    for (meshPatch& p : mesh.patches)
-    {
-        p.size = 0;
-    }
-    for (faceId id = 0; id < nTetFaces; ++id)
-    {
-        const label p = physicalPatchOf(id);
-        if (p >= 0)
+    // Tet faces in id order stay in owner order
+    detail::layOutPhysicalPatches
+    (
+        mesh, physicalPatches, nTetFaces, physicalPatchOf,
+        [&](std::size_t facei, faceId id)
         {
-            ++mesh.patches[p].size;
-        }
-    }
-    std::vector<std::size_t> next;
-    label start = mesh.nFaces();
-    for (meshPatch& p : mesh.patches)
-    {
-        p.start = start;
-        next.push_back(std::size_t(start));
-        start += p.size;
-    }
-    mesh.faces.resize(start);
-    mesh.owner.resize(start);
-    for (faceId id = 0; id < nTetFaces; ++id)
-    {
-        const label p = physicalPatchOf(id);
-        if (p >= 0)
-        {
-            const std::size_t facei = next[p]++;
             mesh.faces[facei] = tetFace(tets[id/4], int(id % 4));
             mesh.owner[facei] = label(id/4);
         }
-    }
+    );
 }
 
 
@@ -440,17 +416,7 @@ void addProcessorPatches
 )
 {
     const faceId nTetFaces = faceId(4*tets.size());
-    struct processorFace
-    {
-        label neighbProcNo;
-        std::array<label, 3> key;
-        faceId id;
-
-        bool operator<(const processorFace& o) const
-        {
-            return std::tie(neighbProcNo, key) < std::tie(o.neighbProcNo, o.key);
-        }
-    };
+    using processorFace = detail::processorFace<3, faceId>;
     std::vector<processorFace> faces;
     for (faceId id = 0; id < nTetFaces; ++id)
     {
@@ -475,12 +441,7 @@ void addProcessorPatches
         const bool newPatch = i == 0 || pf.neighbProcNo != faces[i - 1].neighbProcNo;
         if (newPatch)
         {
-            meshPatch p;
-            p.name = processorPatchName(myProcNo, pf.neighbProcNo);
-            p.type = "processor";
-            p.start = mesh.nFaces();
-            p.neighbProcNo = pf.neighbProcNo;
-            mesh.patches.push_back(p);
+            detail::addProcessorPatch(mesh, myProcNo, pf.neighbProcNo);
         }
         if (k[0] == k[1] || k[1] == k[2] || (!newPatch && k == faces[i - 1].key))
         {
