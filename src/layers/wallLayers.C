@@ -1,5 +1,6 @@
 #include "wallLayers.H"
 #include "liftedCrossings.H"
+#include "triangleGrid.H"
 #include "layerStars.H"
 
 #include <algorithm>
@@ -629,22 +630,11 @@ std::function<double(const point3&, const vector3&, double)> gapAlongTriangles
 {
     return [points, triangles](const point3& origin, const vector3& d, double skip)
     {
-        // Moller-Trumbore: the nearest hit beyond skip
+        // The nearest hit beyond skip
         double nearest = layerStars::none;
         for (const triVerts& f : triangles)
         {
-            const vector3 e1 = points[f[1]] - points[f[0]];
-            const vector3 e2 = points[f[2]] - points[f[0]];
-            const vector3 h = cross(d, e2);
-            const double a = dot(e1, h);
-            if (std::abs(a) < 1e-300) continue;
-            const vector3 s = origin - points[f[0]];
-            const double u = dot(s, h)/a;
-            if (u < 0 || u > 1) continue;
-            const vector3 q = cross(s, e1);
-            const double v = dot(d, q)/a;
-            if (v < 0 || u + v > 1) continue;
-            const double t = dot(e2, q)/a;
+            const double t = rayTriangle(origin, d, points[f[0]], points[f[1]], points[f[2]]);
             if (t > skip) nearest = std::min(nearest, t);
         }
         return nearest;
@@ -652,3 +642,6 @@ std::function<double(const point3&, const vector3&, double)> gapAlongTriangles
 }
 
 } // End namespace pmsh
+
+
+// ************************************************************************* //

@@ -1,6 +1,7 @@
 #include "layerStage.H"
 #include "mpiLayerExchange.H"
 #include "pmshError.H"
+#include "triangleGrid.H"
 
 #include "streamManip.H"
 
@@ -34,125 +35,50 @@ public:
     coarseWallGap(const CoarseMesh& coarse, double reach)
     :
         points_(coarse.points),
-        reach_(reach)
-    {
-        for (const coarseBoundaryFace& f : coarse.boundary) add(f.v, true);
-        for (const coarseZoneFace& f : coarse.zoneFaces) add(f.v, false);
-        bin();
-    }
+        reach_(reach),
+        triangles_(trianglesOf(coarse)),
+        grid_(points_, triangles_, reach)
+    {}
 
     double operator()(const point3& origin, const vector3& d, double skip) const
     {
         const point3 end = origin + reach_*d;
-        std::array<long, 3> lo, hi;
+        box3 segment{origin, origin};
         for (int k = 0; k < 3; ++k)
         {
-            lo[k] = cellOf(std::min(origin[k], end[k]), k);
-            hi[k] = cellOf(std::max(origin[k], end[k]), k);
+            segment.lo[k] = std::min(origin[k], end[k]);
+            segment.hi[k] = std::max(origin[k], end[k]);
         }
         double nearest = std::numeric_limits<double>::infinity();
-        for (long i = lo[0]; i <= hi[0]; ++i)
-        for (long j = lo[1]; j <= hi[1]; ++j)
-        for (long k = lo[2]; k <= hi[2]; ++k)
+        grid_.near(segment, [&](label i)
         {
-            const auto [b, e] = std::equal_range
-            (
-                cellKeys_.begin(), cellKeys_.end(), key(i, j, k)
-            );
-            for (auto it = b; it != e; ++it)
-            {
-                const double t = hit(triangles_[items_[it - cellKeys_.begin()]], origin, d);
-                if (t > skip && t <= reach_) nearest = std::min(nearest, t);
-            }
-        }
+            const triVerts& f = triangles_[i];
+            const point3& p = points_[f[0]];
+            const bool boundary = i < nBoundary_;
+            if (boundary && dot(cross(points_[f[1]] - p, points_[f[2]] - p), d) <= 0) return;
+            const double t = rayTriangle(origin, d, p, points_[f[1]], points_[f[2]]);
+            if (t > skip && t <= reach_) nearest = std::min(nearest, t);
+        });
         return nearest;
     }
 
 private:
 
-    struct triangle
+    //- The boundary faces, then the faces between zones
+    std::vector<triVerts> trianglesOf(const CoarseMesh& coarse)
     {
-        triVerts v;
-        bool oriented;      //!< a boundary face: counts only on leaving
-    };
-
-    void add(const triVerts& v, bool oriented)
-    {
-        triangles_.push_back({v, oriented});
-    }
-
-    long cellOf(double x, int k) const
-    {
-        return long(std::floor((x - origin_[k])/reach_));
-    }
-
-    static long key(long i, long j, long k)
-    {
-        // 21 bits an axis: grids of up to 2^21 cells a side
-        return (i << 42) | (j << 21) | k;
-    }
-
-    // Each triangle in every cell its box touches, sorted by cell
-    void bin()
-    {
-        origin_ = points_.empty() ? point3{0, 0, 0} : points_[0];
-        for (const point3& p : points_)
-        {
-            for (int k = 0; k < 3; ++k) origin_[k] = std::min(origin_[k], p[k]);
-        }
-        std::vector<std::pair<long, label>> entries;
-        for (label t = 0; t < label(triangles_.size()); ++t)
-        {
-            const triVerts& v = triangles_[t].v;
-            std::array<long, 3> lo, hi;
-            for (int k = 0; k < 3; ++k)
-            {
-                const double a = points_[v[0]][k], b = points_[v[1]][k], c = points_[v[2]][k];
-                lo[k] = cellOf(std::min({a, b, c}), k);
-                hi[k] = cellOf(std::max({a, b, c}), k);
-            }
-            for (long i = lo[0]; i <= hi[0]; ++i)
-            for (long j = lo[1]; j <= hi[1]; ++j)
-            for (long k = lo[2]; k <= hi[2]; ++k)
-            {
-                entries.push_back({key(i, j, k), t});
-            }
-        }
-        std::sort(entries.begin(), entries.end());
-        cellKeys_.reserve(entries.size());
-        items_.reserve(entries.size());
-        for (const auto& [c, t] : entries)
-        {
-            cellKeys_.push_back(c);
-            items_.push_back(t);
-        }
-    }
-
-    // Moller-Trumbore: the ray's parameter at the triangle, or -1
-    double hit(const triangle& tri, const point3& o, const vector3& d) const
-    {
-        const point3& p0 = points_[tri.v[0]];
-        const vector3 e1 = points_[tri.v[1]] - p0;
-        const vector3 e2 = points_[tri.v[2]] - p0;
-        if (tri.oriented && dot(cross(e1, e2), d) <= 0) return -1;
-        const vector3 h = cross(d, e2);
-        const double a = dot(e1, h);
-        if (std::abs(a) < 1e-300) return -1;
-        const vector3 s = o - p0;
-        const double u = dot(s, h)/a;
-        if (u < 0 || u > 1) return -1;
-        const vector3 q = cross(s, e1);
-        const double v = dot(d, q)/a;
-        if (v < 0 || u + v > 1) return -1;
-        return dot(e2, q)/a;
+        std::vector<triVerts> triangles;
+        for (const coarseBoundaryFace& f : coarse.boundary) triangles.push_back(f.v);
+        nBoundary_ = triangles.size();
+        for (const coarseZoneFace& f : coarse.zoneFaces) triangles.push_back(f.v);
+        return triangles;
     }
 
     const std::vector<point3>& points_;
     double reach_;
-    point3 origin_{0, 0, 0};
-    std::vector<triangle> triangles_;
-    std::vector<long> cellKeys_;       //!< sorted
-    std::vector<label> items_;         //!< the triangle of each key
+    label nBoundary_ = 0;       //!< the first ones: counted only on leaving
+    std::vector<triVerts> triangles_;
+    triangleGrid grid_;
 };
 
 
