@@ -40,15 +40,17 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
     }
     mesh.points = {};
 
-    // Each face is a view of its three labels in the tetPolyMesh's triangles.
-    // List<face> forbids this (List::shallowCopy is deleted, as a List
-    // owns its storage): the view is set through UList, and the destructor
-    // takes every view back before the faceList would free it. With prism
-    // layers (quads) the faces are OpenFOAM's own, of 3 or 4 points
+    // Each face is a view of its labels in a block this object owns: the
+    // tetPolyMesh's triangles, or with prism layers (quads) one flat block
+    // of 3 or 4 labels a face (OpenFOAM's own faces would take a heap
+    // block each: 16 bytes of list and the allocator's header on top of
+    // the labels). List<face> forbids this (List::shallowCopy is
+    // deleted, as a List owns its storage): the view is set through UList,
+    // and the destructor takes every view back before the faceList would
+    // free it
     static_assert(sizeof(triVerts) == 3*sizeof(label), "triangles are 3 contiguous labels");
     faceList faces(label(mesh.faces.size()));
-    views_ = mesh.quads.empty();
-    if (views_)
+    if (mesh.quads.empty())
     {
         triangles_ = std::move(mesh.faces);
         forAll(faces, i)
@@ -61,20 +63,20 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
     }
     else
     {
-        std::size_t q = 0;
+        mixedFaces_.resize(3*mesh.faces.size() + mesh.quads.size());
+        std::size_t q = 0, at = 0;
         forAll(faces, i)
         {
-            const triVerts& t = mesh.faces[i];
-            const bool quad = q < mesh.quads.size() && mesh.quads[q].face == i;
-            face& f = faces[i];
-            f.setSize(quad ? 4 : 3);
-            f[0] = t[0];
-            f[1] = t[1];
-            f[2] = t[2];
-            if (quad)
+            const std::size_t start = at;
+            for (const label v : mesh.faces[i]) mixedFaces_[at++] = v;
+            if (q < mesh.quads.size() && mesh.quads[q].face == i)
             {
-                f[3] = mesh.quads[q++].fourth;
+                mixedFaces_[at++] = mesh.quads[q++].fourth;
             }
+            static_cast<UList<label>&>(faces[i]).shallowCopy
+            (
+                UList<label>(mixedFaces_.data() + start, label(at - start))
+            );
         }
         mesh.faces = {};
         mesh.quads = {};
@@ -308,7 +310,7 @@ void pmsh::foamRankMesh::write() const
 
     const label nFaces = mesh_->nFaces();
     const bool compact =
-        views_
+        !triangles_.empty()
      && mesh_->time().writeFormat() == IOstream::BINARY
      && nFaces > 0
      && std::size_t(3)*std::size_t(nFaces) <= std::size_t(labelMax);
@@ -346,7 +348,7 @@ void pmsh::foamRankMesh::write() const
 pmsh::foamRankMesh::~foamRankMesh()
 {
     // The faces must not free what the block owns
-    if (mesh_.valid() && views_)
+    if (mesh_.valid())
     {
         for (Foam::face& f : const_cast<Foam::faceList&>(mesh_->faces()))
         {
