@@ -93,6 +93,13 @@ SCHEMES = {
         fv_schemes("leastSquares", "corrected",
                    convection="bounded Gauss linearUpwind limitedGrad",
                    extra_grad="limitedGrad cellLimited leastSquares 1;")),
+    # The same with a conservative pressure gradient: the pressure force
+    # balances the wall shear, as leastSquares' does not (the pipe)
+    "conservativePressure": (
+        "as the tutorials, but grad(p) Gauss linear (the pipe tutorial now)",
+        fv_schemes("leastSquares", "corrected",
+                   convection="bounded Gauss linearUpwind limitedGrad",
+                   extra_grad="limitedGrad cellLimited leastSquares 1; grad(p) Gauss linear;")),
 }
 
 # One change at a time, on the reference mesh only
@@ -178,6 +185,13 @@ PIPE_PMSH_DICT = pmsh_dict("pipe.geo", """\
     walls            { type wall; %(layers)s}
 """)
 
+# pmshFoam's prism layers: the issue's on the ball (0.015 thick); on the
+# pipe's wall the 5 of snappyHexMesh's case and the tutorial's 12 (0.29
+# of the radius)
+SPHERE_LAYERS = "layers 5; firstLayerThickness 0.002; expansionRatio 1.2; "
+PIPE_LAYERS_5 = "layers 5; firstLayerThickness 0.01; expansionRatio 1.2; "
+PIPE_LAYERS_12 = "layers 12; firstLayerThickness 0.01; expansionRatio 1.15; "
+
 
 class Study:
     """One flow of the study: its tutorial, its peer's case, its meshes and
@@ -205,6 +219,7 @@ class Study:
 class SphereStudy(Study):
     sizes = {"far": 4.0, "ball": 0.1, "wake": 1.0}      # the tutorial's
     reference_mesh = "netgen-1"
+    scheme_sets = ("gauss", "leastSquares", "leastSquaresLimitedConvection")
 
     def __init__(self):
         Study.__init__(self, "sphere", os.path.join(ROOT, "tutorials", "sphereDrag"),
@@ -218,6 +233,9 @@ class SphereStudy(Study):
             out.append(self.pmsh_mesh("netgen-%g" % f, "pmshFoam netgen", "netgen", f))
         for f in (2.0, 1.41, 1.0, 0.71):
             out.append(self.pmsh_mesh("hxt-%g" % f, "pmshFoam hxt", "hxt", f))
+        for f in (1.41, 1.0):
+            out.append(self.pmsh_mesh("netgen-%g-layers" % f, "pmshFoam netgen, 5 layers",
+                                      "netgen", f, layers=SPHERE_LAYERS))
         for f in (1.41, 1.0, 0.71, 0.5):
             m = self.pmsh_mesh("dual-%g" % f, "polyDualMesh of pmshFoam netgen", "netgen", f)
             m["builder"] = "dual"
@@ -274,7 +292,7 @@ class PipeStudy(Study):
     # The pipe repeats the sphere's findings at a smaller cost: unlimited
     # leastSquares diverged on its finer tets, and of the variants only
     # those that split the cause (which gradient, limiting, stencil)
-    scheme_sets = ("gauss", "leastSquaresLimitedConvection")
+    scheme_sets = ("gauss", "leastSquaresLimitedConvection", "conservativePressure")
     variants = ("gaussUnlimited", "leastSquares", "leastSquaresGradPOnly",
                 "leastSquaresGradUOnly", "leastSquaresAllLimited", "pointCellsLeastSquares",
                 "gaussSkewCorrected")
@@ -289,6 +307,10 @@ class PipeStudy(Study):
         for h in (0.4, 0.28):
             out.append(self.pmsh_mesh("netgen-%g" % h, "pmshFoam netgen", "netgen", far=h))
         out.append(self.pmsh_mesh("hxt-0.4", "pmshFoam hxt", "hxt", far=0.4))
+        out.append(self.pmsh_mesh("netgen-0.4-layers5", "pmshFoam netgen, 5 layers", "netgen",
+                                  far=0.4, layers=PIPE_LAYERS_5))
+        out.append(self.pmsh_mesh("netgen-0.4-layers12", "pmshFoam netgen, 12 layers",
+                                  "netgen", far=0.4, layers=PIPE_LAYERS_12))
         for layers in (0, 5):
             for level in ((1, 2) if not layers else (1,)):
                 out.append({"name": "snappy-L%d%s" % (level, "-layers" if layers else ""),
@@ -410,6 +432,13 @@ def snappy_layer_coverage(case, patch):
     faces, layers, thickness, percent = rows[-1]
     return {"meanLayers": float(layers), "thickness": float(thickness),
             "thicknessPercent": float(percent)}
+
+
+def pmsh_layer_coverage(case, patch):
+    """pmshFoam's report of a patch's layers (summary.json): layers,
+    coverage (the share of faces with all their layers), thickness"""
+    with open(os.path.join(case, "postProcessing", "pmshFoam", "summary.json")) as f:
+        return json.load(f)["layers"][patch]
 
 
 def mesh_dirs(case):
@@ -551,6 +580,8 @@ def build_mesh(args, study, m, res):
     record.update(study.surface_fidelity(case))
     if m["builder"] == "snappy" and m["entries"].get("nLayers"):
         record["layers"] = snappy_layer_coverage(case, SNAPPY_WALLS[study.name])
+    if m["builder"] == "pmsh" and m.get("layers"):
+        record["pmshLayers"] = pmsh_layer_coverage(case, SNAPPY_WALLS[study.name])
     record["gradientError"] = {}
     for grad in ("Gauss linear", "leastSquares"):
         record["gradientError"][grad] = gradient_error(study, case, args.np, grad)
@@ -708,9 +739,10 @@ def pct(study, value):
 
 
 FAMILY_ORDER = ["pmshFoam netgen", "pmshFoam hxt", "polyDualMesh of pmshFoam netgen",
-                "snappyHexMesh", "snappyHexMesh, 5 layers"]
+                "snappyHexMesh", "snappyHexMesh, 5 layers", "pmshFoam netgen, 5 layers",
+                "pmshFoam netgen, 12 layers"]
 # One colour a family in every panel, whichever families a panel has
-FAMILY_COLOURS = dict(zip(FAMILY_ORDER, ["C0", "C1", "C2", "C3", "C4"]))
+FAMILY_COLOURS = dict(zip(FAMILY_ORDER, ["C0", "C1", "C2", "C3", "C4", "C5", "C6"]))
 
 
 def diverged(study, s):
@@ -810,7 +842,7 @@ def study_report(study, res):
     lines = ["## %s: %s against cells, per mesh type and scheme set" % (
         study.name, study.quantity), ""]
     header = ["mesh", "family", "cells", "max non-orth", "|grad C - I| Gauss / LS"]
-    for schemes in SCHEMES:
+    for schemes in study.scheme_sets:
         header += [schemes, "error", ""]
     rows = []
     for family in FAMILY_ORDER + ["isolation"]:
@@ -825,7 +857,7 @@ def study_report(study, res):
             row = [name, family, "%d" % m["cells"] if m.get("cells") is not None else "-", fmt(m.get("maxNonOrtho"), 1),
                    "%s / %s" % (fmt(ge.get("Gauss linear", {}).get("mean"), 3),
                                 fmt(ge.get("leastSquares", {}).get("mean"), 3))]
-            for schemes in SCHEMES:
+            for schemes in study.scheme_sets:
                 row += answer_cells(study, res["solutions"].get("%s/%s" % (name, schemes)))
             rows.append(row)
     lines += [pb.md_table(header, rows), ""]
@@ -833,7 +865,7 @@ def study_report(study, res):
     variants = [(n, SCHEME_VARIANTS[n][0]) for n in SCHEME_VARIANTS]
     found = [(n, t) for n, t in list((n, SCHEMES[n][0]) for n in SCHEMES) + variants
              if "%s/%s" % (study.reference_mesh, n) in res["solutions"]]
-    if len(found) > len(SCHEMES):
+    if len(found) > len(study.scheme_sets):
         lines += ["### One change at a time, on %s" % study.reference_mesh, ""]
         rows = []
         for name, title in found:
@@ -855,16 +887,20 @@ def study_report(study, res):
         shapes = ", ".join("%s %d" % (k, m[k]) for k in ("tetrahedra", "prisms", "hexahedra",
                                                         "polyhedra") if m.get(k))
         layers = m.get("layers")
+        own = m.get("pmshLayers")
         rows.append([name, "%d" % m["cells"] if m.get("cells") is not None else "-", shapes, fmt(m.get("meshTime"), 1),
                      "OK" if m.get("meshOK") else "FAILED", fmt(m.get("maxSkewness"), 2),
                      "%+.4f %%" % (100*(m["volume"]/exact_volume - 1)) if m.get("volume") else "-",
                      "%+.3f %%" % (100*m["ballAreaError"]) if "ballAreaError" in m else "-",
                      ("%.2f layers, %.0f %% of the thickness" % (layers["meanLayers"],
                                                                 layers["thicknessPercent"]))
-                     if layers else "-"])
+                     if layers else
+                     ("%d layers on %.1f %% of the faces, %.3g thick" % (
+                         own["layers"], 100*own["coverage"], own["thickness"][1]))
+                     if own else "-"])
     lines += [pb.md_table(["mesh", "cells", "shapes", "mesh time [s]", "checkMesh",
                            "max skewness", "volume vs exact", "ball area vs pi",
-                           "snappy layers"], rows), ""]
+                           "layers"], rows), ""]
     return lines
 
 
