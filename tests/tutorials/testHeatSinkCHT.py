@@ -10,12 +10,10 @@ Run one test:  python3 testHeatSinkCHT.py heatSinkCHT.test_allrunMeshesSplitsAnd
 
 import os
 import re
-import subprocess
 import sys
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import openfoam_environment  # noqa: E402
 from testSerialTutorials import CaseTest  # noqa: E402
 
 
@@ -23,13 +21,8 @@ class heatSinkCHT(CaseTest):
 
     def test_allrunMeshesSplitsAndRunsChtToEnd(self):
         c = self.case("heatSinkCHT")
-        env = openfoam_environment()
-        env["PATH"] = os.path.dirname(c.pmshFoam) + ":" + env["PATH"]
-        proc = subprocess.run([os.path.join(c.dir, "Allrun"), "2"], stdin=subprocess.DEVNULL,
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                              env=env, timeout=900)
-        out = proc.stdout.decode()
-        self.assertEqual(proc.returncode, 0, out)
+        code, out = c.run_allrun("2", timeout=900)
+        self.assertEqual(code, 0, out)
         self.assertEqual(out.count("Mesh OK"), 3, out)   # whole mesh, air, heatSink
 
         with open(os.path.join(c.dir, "processor0/constant/polyMesh/cellZones")) as f:

@@ -10,12 +10,11 @@ Run one test:  python3 testLayers.py layers.test_pipeAllrunGivesPressureDropWith
 import json
 import os
 import re
-import subprocess
 import sys
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import cells_in_checkmesh_log, openfoam_environment  # noqa: E402
+from tutorialCase import cells_in_checkmesh_log  # noqa: E402
 from testSerialTutorials import CaseTest  # noqa: E402
 from testBodyInBox import bodyInBox  # noqa: E402
 
@@ -71,13 +70,8 @@ class layers(CaseTest):
         pressure drop within 2 % of Hagen-Poiseuille (+1.3 %; tetrahedra
         alone gave +10.5 % with the same schemes)."""
         c = self.case("pipe")
-        env = openfoam_environment()
-        env["PATH"] = os.path.dirname(c.pmshFoam) + ":" + env["PATH"]
-        proc = subprocess.run([os.path.join(c.dir, "Allrun")], stdin=subprocess.DEVNULL,
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                              env=env, timeout=1100)
-        out = proc.stdout.decode()
-        self.assertEqual(proc.returncode, 0, out[-3000:])
+        code, out = c.run_allrun()
+        self.assertEqual(code, 0, out[-3000:])
         self.assertIn("Mesh OK", out)
         with open(os.path.join(c.dir, "log.pmshFoam")) as f:
             log = f.read()

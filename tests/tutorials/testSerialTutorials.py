@@ -10,7 +10,6 @@ import math
 import os
 import re
 import shutil
-import subprocess
 import sys
 import time
 import unittest
@@ -153,12 +152,8 @@ class sphere(CaseTest):
 
     def test_tutorialAllrunEndsWithMeshOK(self):
         c = self.case("sphere")
-        env = openfoam_environment()
-        env["PATH"] = os.path.dirname(c.pmshFoam) + ":" + env["PATH"]
-        proc = subprocess.run([os.path.join(c.dir, "Allrun")], stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, env=env)
-        out = proc.stdout.decode()
-        self.assertEqual(proc.returncode, 0, out)
+        code, out = c.run_allrun()
+        self.assertEqual(code, 0, out)
         self.assertIn("Mesh OK", out)
 
 

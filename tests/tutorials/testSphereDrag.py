@@ -8,12 +8,11 @@ Run one test:  python3 testSphereDrag.py sphereDrag.test_allrunGivesCdWithin3Per
 
 import os
 import re
-import subprocess
 import sys
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import cells_in_checkmesh_log, openfoam_environment  # noqa: E402
+from tutorialCase import cells_in_checkmesh_log  # noqa: E402
 from testSerialTutorials import CaseTest  # noqa: E402
 
 REFERENCE_CD = 1.087     # Johnson & Patel 1999, sphere at Re = 100
@@ -36,13 +35,8 @@ class sphereDrag(CaseTest):
         155k cells (+1.3 % with the shipped schemes; Gauss linear
         gradients gave +7.0 % and fail this test)."""
         c = self.case("sphereDrag")
-        env = openfoam_environment()
-        env["PATH"] = os.path.dirname(c.pmshFoam) + ":" + env["PATH"]
-        proc = subprocess.run([os.path.join(c.dir, "Allrun")], stdin=subprocess.DEVNULL,
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                              env=env, timeout=600)
-        out = proc.stdout.decode()
-        self.assertEqual(proc.returncode, 0, out)
+        code, out = c.run_allrun(timeout=600)
+        self.assertEqual(code, 0, out)
         self.assertIn("Mesh OK", out)
 
         boundary = dict(c.polymesh("processor0/constant/polyMesh").boundary())

@@ -88,6 +88,16 @@ class TutorialCase:
                                  % (" ".join(argv), proc.returncode, text[-4000:]))
         return proc.returncode, text
 
+    def run_allrun(self, *args, timeout=1100):
+        """The tutorial's own Allrun (with its arguments), this pmshFoam
+        first on the PATH; returns (exit code, output)."""
+        env = openfoam_environment()
+        env["PATH"] = os.path.dirname(self.pmshFoam) + ":" + env["PATH"]
+        proc = subprocess.run([os.path.join(self.dir, "Allrun")] + list(args),
+                              stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, env=env, timeout=timeout)
+        return proc.returncode, proc.stdout.decode(errors="replace")
+
     def check_mesh(self, np=1):
         """Run checkMesh; fail unless it says 'Mesh OK'. Returns the log."""
         _, text = self.run("checkMesh", np=np)
