@@ -383,6 +383,7 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
     const bool layered = !mesh.prisms.empty() || !mesh.quads.empty();
     if (comm.sum(std::int64_t(layered)) > 0)
     {
+        stats.layered = true;
         return stats;
     }
     const int me = comm.rank();
