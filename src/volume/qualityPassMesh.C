@@ -1,6 +1,7 @@
 #include "qualityPassMesh.H"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
@@ -39,14 +40,31 @@ pmsh::qualityPass::passMesh::passMesh
 
 void pmsh::qualityPass::passMesh::rebuild()
 {
-    tets_.erase
-    (
-        std::remove_if
-        (
-            tets_.begin(), tets_.end(), [](const tetVerts& c) { return c[0] < 0; }
-        ),
-        tets_.end()
-    );
+    // Remove the deleted tets; a tet addressed before keeps what is across
+    // its faces, renumbered, unless that tet was deleted (unknown below)
+    constexpr label unknown = std::numeric_limits<label>::min();
+    std::vector<label> newIndex(tets_.size(), -1);
+    label n = 0;
+    for (label t = 0; t < label(tets_.size()); ++t)
+    {
+        if (tets_[t][0] >= 0) newIndex[t] = n++;
+    }
+    across_.resize(4*tets_.size(), unknown);
+    for (label t = 0; t < label(tets_.size()); ++t)
+    {
+        const label to = newIndex[t];
+        if (to < 0) continue;
+        tets_[to] = tets_[t];
+        for (int k = 0; k < 4; ++k)
+        {
+            const label u = t < nAddressed_ ? across_[4*t + k] : unknown;
+            across_[4*to + k] = u >= 0 ? (newIndex[u] >= 0 ? newIndex[u] : unknown) : u;
+        }
+    }
+    tets_.resize(n);
+    across_.resize(4*n);
+    newIndex = std::vector<label>();
+
     start_.assign(points_.size() + 1, 0);
     for (const tetVerts& c : tets_)
     {
@@ -55,21 +73,52 @@ void pmsh::qualityPass::passMesh::rebuild()
     std::partial_sum(start_.begin(), start_.end(), start_.begin());
     pointTets_.resize(start_.back());
     std::vector<label> fill(start_.begin(), start_.end() - 1);
-    for (label t = 0; t < label(tets_.size()); ++t)
+    for (label t = 0; t < n; ++t)
     {
         for (label p : tets_[t]) pointTets_[fill[p]++] = t;
     }
-    across_.resize(4*tets_.size());
-    for (label t = 0; t < label(tets_.size()); ++t)
+    for (label t = 0; t < n; ++t)
     {
         for (int k = 0; k < 4; ++k)
         {
+            if (across_[4*t + k] != unknown) continue;
             const triVerts f = tetFace(tets_[t], k);
             const label u = findTet(t, f);
             across_[4*t + k] = u >= 0 ? u : acrossBoundary(boundaryTriangle(f));
         }
     }
+    nAddressed_ = n;
     locked_.assign(points_.size(), 0);
+    moveClock_ = 0;
+    movedAt_.assign(points_.size(), 0);
+    failedAt_.assign(points_.size(), -1);
+    markNearChanges();
+}
+
+
+void pmsh::qualityPass::passMesh::markNearChanges()
+{
+    changed_.resize(points_.size(), 1);
+    std::vector<char>& near = changed_;
+    for (int ring = 0; ring < 2; ++ring)
+    {
+        std::vector<char> wider(near);
+        for (const tetVerts& c : tets_)
+        {
+            if (near[c[0]] || near[c[1]] || near[c[2]] || near[c[3]])
+            {
+                for (label p : c) wider[p] = 1;
+            }
+        }
+        near.swap(wider);
+    }
+    nearChange_.resize(tets_.size());
+    for (std::size_t t = 0; t < tets_.size(); ++t)
+    {
+        const tetVerts& c = tets_[t];
+        nearChange_[t] = near[c[0]] || near[c[1]] || near[c[2]] || near[c[3]];
+    }
+    changed_.assign(points_.size(), 0);
 }
 
 
@@ -201,11 +250,33 @@ void pmsh::qualityPass::passMesh::replace(const std::vector<label>& old, const s
 {
     for (label t : old)
     {
-        for (label p : tets_[t]) locked_[p] = 1;
+        for (label p : tets_[t]) locked_[p] = changed_[p] = 1;
         tets_[t][0] = -1;
     }
     for (const tetVerts& c : created) tets_.push_back(c);
     ++nFlips;
+}
+
+
+bool pmsh::qualityPass::passMesh::movedSince(const std::vector<label>& star, label since) const
+{
+    for (label t : star)
+    {
+        for (label p : tets_[t])
+        {
+            if (movedAt_[p] > since) return true;
+        }
+        for (int k = 0; k < 4; ++k)
+        {
+            const label u = across_[4*t + k];
+            if (u < 0) continue;
+            for (label p : tets_[u])
+            {
+                if (movedAt_[p] > since) return true;
+            }
+        }
+    }
+    return false;
 }
 
 
@@ -220,6 +291,7 @@ bool pmsh::qualityPass::passMesh::current(label t) const
         const label u = across_[4*t + k];
         if (u >= 0)
         {
+            if (tets_[u][0] < 0) return false;     // deleted: its points are locked
             for (label p : tets_[u])
             {
                 if (locked_[p]) return false;

@@ -208,7 +208,10 @@ bool pmsh::qualityPass::passMesh::flip(label t)
         }
     }
 
-    if (bestOld.empty() && isSliver && insertPoints)
+    // A tet that is not positive (HXT now and then returns one, flat to
+    // the last bit) makes the mesh invalid: it gets a point even when
+    // slivers do not
+    if (bestOld.empty() && isSliver && (insertPoints || !std::isfinite(sliver(t))))
     {
         return insertPoint(t);
     }
@@ -288,6 +291,9 @@ bool pmsh::qualityPass::passMesh::insertPoint(label t)
     }
     points_.push_back(bestPoint);
     locked_.push_back(1);
+    changed_.push_back(1);
+    movedAt_.push_back(0);
+    failedAt_.push_back(-1);
     replace(bestOld, bestNew);
     ++nInserted;
     return true;
@@ -300,6 +306,10 @@ void pmsh::qualityPass::passMesh::smooth(label p)
     for (label t : star)
     {
         if (!current(t)) return;
+    }
+    if (failedAt_[p] >= 0 && !movedSince(star, failedAt_[p]))
+    {
+        return;     // as it was when smoothing p last failed
     }
     std::vector<tetVerts> set;
     std::vector<std::array<label, 4>> acrossOf(star.size()), inSet(star.size());
@@ -415,7 +425,13 @@ void pmsh::qualityPass::passMesh::smooth(label p)
     if (moved)
     {
         points_[p] = x;
+        changed_[p] = 1;
+        movedAt_[p] = ++moveClock_;
         ++nMoved;
+    }
+    else
+    {
+        failedAt_[p] = moveClock_;
     }
 }
 

@@ -12,7 +12,8 @@ using namespace pmsh;
 
 //- The tets one step visits, worst first: the slivers worse than
 //  `sliverBadness`, and the tets on both sides of the faces worse than
-//  `faceBadness`.
+//  `faceBadness`, among the tets near what the last step changed (every
+//  tet at the first step): elsewhere a visit would fail again as it did.
 std::vector<std::pair<double, label>> tetsToVisit
 (
     const qualityPass::passMesh& m,
@@ -23,6 +24,7 @@ std::vector<std::pair<double, label>> tetsToVisit
     std::vector<std::pair<double, label>> visit;
     for (label t = 0; t < m.nTets(); ++t)
     {
+        if (!m.nearChange(t)) continue;
         if (m.sliver(t) > sliverBadness)
         {
             visit.push_back({m.sliver(t), t});
@@ -44,8 +46,8 @@ std::vector<std::pair<double, label>> tetsToVisit
 
 //- Up to `steps` steps, each visiting tetsToVisit(m, sliverBadness,
 //  faceBadness); stops early when there is nothing left to visit. The
-//  worst faces before and after are measured if measureWorst (each a scan
-//  of every face).
+//  worst faces before are measured if measureWorst (a scan of every
+//  face).
 qualityPassStats runSteps
 (
     qualityPass::passMesh& m,
@@ -71,7 +73,6 @@ qualityPassStats runSteps
         // A step that changed nothing would be repeated exactly
         if (m.nFlips + m.nMoved == changesBefore) break;
     }
-    if (measureWorst) stats.worstAfter = m.worstFaces();
     stats.nVisited = m.nVisited;
     stats.nMoved = m.nMoved;
     stats.nFlips = m.nFlips;

@@ -15,6 +15,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+
+#include <cmath>
 #include <algorithm>
 #include <cstring>
 #include <map>
@@ -316,6 +318,46 @@ TEST(tetQualityPass, removesASliverWithAllItsPointsFixed)
         const point3* p[4] = {&m.points[c[0]], &m.points[c[1]], &m.points[c[2]], &m.points[c[3]]};
         EXPECT_GT(tetVolume6(*p[0], *p[1], *p[2], *p[3]), 0.1);
     }
+}
+
+
+TEST(tetQualityPass, aFlatTetThatNoFlipMendsGetsAPointInTheFullPassToo)
+{
+    // A tet flat to the last bit (HXT returns one now and then) on a unit
+    // square: diagonal a-c lies on the boundary below, diagonal b-d inside,
+    // with a fan of eight tets around b-d above it (apexes on an arc from
+    // a's side to c's). Every point is fixed and every other edge of the
+    // flat tet is on the boundary: the ring around b-d is too large to
+    // flip, and no 2-3 flip sees across it. Only a new point inside the
+    // ring mends it; without one the mesh stays invalid
+    TetMesh m;
+    const double h = 1e-3;      // a-c below b-d while orienting, then flat
+    m.points = {{0, 0, -h}, {1, 0, h}, {1, 1, -h}, {0, 1, h}};
+    const int nArc = 6;
+    for (int i = 1; i <= nArc; ++i)
+    {
+        const double theta = M_PI*(1 - double(i)/(nArc + 1));
+        const double along = 0.5*std::cos(theta)/std::sqrt(2.0);
+        m.points.push_back({0.5 + along, 0.5 + along, 0.5*std::sin(theta)});
+    }
+    m.tets = {{0, 1, 2, 3}, {0, 1, 3, 4}};
+    for (int i = 1; i < nArc; ++i)
+    {
+        m.tets.push_back({3 + i, 4 + i, 1, 3});
+    }
+    m.tets.push_back({3 + nArc, 2, 1, 3});
+    orientPositive(m);
+    const std::vector<triVerts> triangles = boundaryOf(m);
+    for (label p = 0; p < 4; ++p) m.points[p][2] = 0;
+    const point3* a[4] = {&m.points[0], &m.points[1], &m.points[2], &m.points[3]};
+    ASSERT_EQ(tetVolume6(*a[0], *a[1], *a[2], *a[3]), 0);
+    ASSERT_TRUE(matchTetFaces(m.points.size(), m.tets, triangles).fits());
+    const std::vector<point3> before = m.points;
+
+    const qualityPassStats stats = improveWorstCells(m, label(before.size()), triangles, {}, 3);
+
+    expectValid(m, before, before.size(), triangles);
+    EXPECT_EQ(stats.nInserted, 1);
 }
 
 
