@@ -50,11 +50,13 @@ void pmsh::qualityPass::passMesh::rebuild()
         if (tets_[t][0] >= 0) newIndex[t] = n++;
     }
     across_.resize(4*tets_.size(), unknown);
+    quiet_.resize(tets_.size(), 0);
     for (label t = 0; t < label(tets_.size()); ++t)
     {
         const label to = newIndex[t];
         if (to < 0) continue;
         tets_[to] = tets_[t];
+        quiet_[to] = t < nAddressed_ && quiet_[t];
         for (int k = 0; k < 4; ++k)
         {
             const label u = t < nAddressed_ ? across_[4*t + k] : unknown;
@@ -63,6 +65,7 @@ void pmsh::qualityPass::passMesh::rebuild()
     }
     tets_.resize(n);
     across_.resize(4*n);
+    quiet_.resize(n);
     newIndex = std::vector<label>();
 
     start_.assign(points_.size() + 1, 0);
@@ -84,7 +87,18 @@ void pmsh::qualityPass::passMesh::rebuild()
             if (across_[4*t + k] != unknown) continue;
             const triVerts f = tetFace(tets_[t], k);
             const label u = findTet(t, f);
-            across_[4*t + k] = u >= 0 ? u : acrossBoundary(boundaryTriangle(f));
+            if (u < 0)
+            {
+                across_[4*t + k] = acrossBoundary(boundaryTriangle(f));
+                continue;
+            }
+            // Both sides at once: u's face is the one opposite its apex
+            across_[4*t + k] = u;
+            const label apex = apexOf(u, f);
+            for (int l = 0; l < 4; ++l)
+            {
+                if (tets_[u][l] == apex) across_[4*u + 3 - l] = t;
+            }
         }
     }
     nAddressed_ = n;
@@ -92,31 +106,28 @@ void pmsh::qualityPass::passMesh::rebuild()
     moveClock_ = 0;
     movedAt_.assign(points_.size(), 0);
     failedAt_.assign(points_.size(), -1);
-    markNearChanges();
+    forgetQuietNearChanges();
 }
 
 
-void pmsh::qualityPass::passMesh::markNearChanges()
+void pmsh::qualityPass::passMesh::forgetQuietNearChanges()
 {
     changed_.resize(points_.size(), 1);
-    std::vector<char>& near = changed_;
-    for (int ring = 0; ring < 2; ++ring)
-    {
-        std::vector<char> wider(near);
-        for (const tetVerts& c : tets_)
-        {
-            if (near[c[0]] || near[c[1]] || near[c[2]] || near[c[3]])
-            {
-                for (label p : c) wider[p] = 1;
-            }
-        }
-        near.swap(wider);
-    }
-    nearChange_.resize(tets_.size());
-    for (std::size_t t = 0; t < tets_.size(); ++t)
+    const auto touched = [&](label t)
     {
         const tetVerts& c = tets_[t];
-        nearChange_[t] = near[c[0]] || near[c[1]] || near[c[2]] || near[c[3]];
+        return changed_[c[0]] || changed_[c[1]] || changed_[c[2]] || changed_[c[3]];
+    };
+    for (label t = 0; t < label(tets_.size()); ++t)
+    {
+        if (!quiet_[t]) continue;
+        bool reads = touched(t);
+        for (int k = 0; k < 4 && !reads; ++k)
+        {
+            const label u = across_[4*t + k];
+            reads = u >= 0 && touched(u);
+        }
+        if (reads) quiet_[t] = 0;
     }
     changed_.assign(points_.size(), 0);
 }

@@ -12,11 +12,11 @@ using namespace pmsh;
 
 //- The tets one step visits, worst first: the slivers worse than
 //  `sliverBadness`, and the tets on both sides of the faces worse than
-//  `faceBadness`, among the tets near what the last step changed (every
-//  tet at the first step): elsewhere a visit would fail again as it did.
+//  `faceBadness`. Tets that were quiet at the last scan, and still are,
+//  are not measured again.
 std::vector<std::pair<double, label>> tetsToVisit
 (
-    const qualityPass::passMesh& m,
+    qualityPass::passMesh& m,
     const double sliverBadness,
     const double faceBadness
 )
@@ -24,7 +24,8 @@ std::vector<std::pair<double, label>> tetsToVisit
     std::vector<std::pair<double, label>> visit;
     for (label t = 0; t < m.nTets(); ++t)
     {
-        if (!m.nearChange(t)) continue;
+        if (m.quiet(t)) continue;
+        const std::size_t listed = visit.size();
         if (m.sliver(t) > sliverBadness)
         {
             visit.push_back({m.sliver(t), t});
@@ -38,6 +39,7 @@ std::vector<std::pair<double, label>> tetsToVisit
                 if (m.across(t, k) >= 0) visit.push_back({b, m.across(t, k)});
             }
         }
+        m.setQuiet(t, visit.size() == listed);
     }
     std::sort(visit.rbegin(), visit.rend());
     return visit;
