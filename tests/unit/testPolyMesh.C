@@ -969,6 +969,34 @@ TEST(tetsToPolyMesh, layeredProcessorFacesAreReverseFaceOfEachOther)
 }
 
 
+TEST(tetsToPolyMesh, layeredRepeatedGlobalPointIdOnProcessorFaceIsAnError)
+{
+    // On an interface quad and on an interface triangle: the -1 that pads
+    // a triangle's key is no repeated point, two equal ids are
+    const layeredMesh m = layeredBlock(4, 2, 2, 2);
+    const std::vector<int> ranks = twoSlabs(m, 2.2);
+    const layeredRankInput in = makeLayeredRankInput(m, ranks, 0, boxRegion);
+    EXPECT_NO_THROW(build(in, boxPatches(), 0));
+    auto firstInterface = [](const std::vector<label>& regions)
+    {
+        return std::size_t(std::find_if(regions.begin(), regions.end(), isInterfaceRegion)
+            - regions.begin());
+    };
+    const std::size_t q = firstInterface(in.quadRegions);
+    const std::size_t t = firstInterface(in.triRegions);
+    ASSERT_LT(q, in.quads.size());
+    ASSERT_LT(t, in.tris.size());
+
+    layeredRankInput repeated = in;
+    repeated.globalIds[in.quads[q][2]] = in.globalIds[in.quads[q][0]];
+    EXPECT_FATAL(build(repeated, boxPatches(), 0), "same global point ids");
+    EXPECT_FATAL(build(repeated, boxPatches(), 0), ", -1: none).");
+    repeated = in;
+    repeated.globalIds[in.tris[t][1]] = in.globalIds[in.tris[t][0]];
+    EXPECT_FATAL(build(repeated, boxPatches(), 0), "same global point ids");
+}
+
+
 TEST(tetsToPolyMesh, missingBoundaryQuadIsAnError)
 {
     const layeredMesh m = layeredBlock(2, 1, 2, 1);
