@@ -145,21 +145,39 @@ void waitLogging
     }
 }
 
+// All n bytes through move(at, count), a read or a write that may move
+// fewer than count bytes from offset `at` on: again where it stopped, also
+// after a signal interrupted it. False at an error or the end of the
+// stream. One loop for both directions, so that they end alike.
+template<class Move>
+bool moveAll(std::size_t n, const Move& move)
+{
+    std::size_t done = 0;
+    while (done < n)
+    {
+        const ssize_t moved = move(done, n - done);
+        if (moved < 0 && errno == EINTR) continue;
+        if (moved <= 0) return false;
+        done += std::size_t(moved);
+    }
+    return true;
+}
+
 bool writeAll(int fd, const void* data, std::size_t n)
 {
     const char* p = static_cast<const char*>(data);
-    while (n > 0)
-    {
-        // A socket (the request) whose reader died fails here, not by
-        // SIGPIPE, which would end the caller
-        ssize_t w = ::send(fd, p, n, MSG_NOSIGNAL);
-        if (w < 0 && errno == ENOTSOCK) w = ::write(fd, p, n);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) return false;
-        p += w;
-        n -= std::size_t(w);
-    }
-    return true;
+    return moveAll
+    (
+        n,
+        [&](std::size_t at, std::size_t count)
+        {
+            // A socket (the request) whose reader died fails here, not by
+            // SIGPIPE, which would end the caller
+            ssize_t w = ::send(fd, p + at, count, MSG_NOSIGNAL);
+            if (w < 0 && errno == ENOTSOCK) w = ::write(fd, p + at, count);
+            return w;
+        }
+    );
 }
 
 template<class T>
@@ -172,15 +190,11 @@ bool writeArray(int fd, const std::vector<T>& v)
 bool readAll(int fd, void* data, std::size_t n)
 {
     char* p = static_cast<char*>(data);
-    while (n > 0)
-    {
-        const ssize_t r = ::read(fd, p, n);
-        if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) return false;
-        p += r;
-        n -= std::size_t(r);
-    }
-    return true;
+    return moveAll
+    (
+        n,
+        [&](std::size_t at, std::size_t count) { return ::read(fd, p + at, count); }
+    );
 }
 
 // Straight into the array: no second copy of a mesh of millions of cells
