@@ -298,34 +298,6 @@ void checkRegions
 }
 
 
-//- Check the input sizes, indices, cell volumes, point usage, patches and
-//  regions (the cells and the boundary are matched afterwards).
-void checkInput
-(
-    const std::vector<point3>& points,
-    const std::vector<tetVerts>& tets,
-    const std::vector<prismVerts>& prisms,
-    const std::vector<triVerts>& boundaryTriangles,
-    const std::vector<label>& boundaryRegion,
-    const std::vector<quadVerts>& boundaryQuads,
-    const std::vector<label>& quadRegion,
-    const std::vector<meshPatch>& physicalPatches,
-    label myProcNo,
-    const std::vector<label>& globalPointIds
-)
-{
-    checkSizes
-    (
-        points.size(), boundaryTriangles.size(), boundaryRegion,
-        boundaryQuads.size(), quadRegion, myProcNo, globalPointIds
-    );
-    checkPatchNames(physicalPatches);
-    checkCellsAndFaces(points, tets, prisms, boundaryTriangles, boundaryQuads);
-    checkRegions(boundaryRegion, "triangle", physicalPatches, myProcNo, globalPointIds);
-    checkRegions(quadRegion, "quad", physicalPatches, myProcNo, globalPointIds);
-}
-
-
 //- Internal faces: owner < neighbour, ordered by (owner, neighbour), each
 //  outward from its owner (towards the neighbour).
 void addInternalFaces
@@ -462,11 +434,17 @@ pmsh::tetPolyMesh pmsh::tetsToPolyMesh
     const std::vector<label>& quadRegion
 )
 {
-    checkInput
+    // The input's sizes, indices, cell volumes, point usage, patches and
+    // regions (the cells and the boundary are matched afterwards)
+    checkSizes
     (
-        points, tets, prisms, boundaryTriangles, boundaryRegion,
-        boundaryQuads, quadRegion, physicalPatches, myProcNo, globalPointIds
+        points.size(), boundaryTriangles.size(), boundaryRegion,
+        boundaryQuads.size(), quadRegion, myProcNo, globalPointIds
     );
+    checkPatchNames(physicalPatches);
+    checkCellsAndFaces(points, tets, prisms, boundaryTriangles, boundaryQuads);
+    checkRegions(boundaryRegion, "triangle", physicalPatches, myProcNo, globalPointIds);
+    checkRegions(quadRegion, "quad", physicalPatches, myProcNo, globalPointIds);
     if (!prisms.empty() || !boundaryQuads.empty())
     {
         return detail::mixedCellsToPolyMesh
