@@ -8,12 +8,9 @@
 // by barycentric id, bit for bit.
 
 #include "mpiTestMain.H"
-#include "coarseMesh.H"
-#include "cubeMesh.H"
 #include "globalNumbering.H"
 #include "mpiLayerExchange.H"
-#include "partitionCoarseMesh.H"
-#include "surfaceRefinement.H"
+#include "partitionedCube.H"
 #include "wallLayers.H"
 
 #include <algorithm>
@@ -32,10 +29,9 @@ namespace
 const int levels = 2;
 
 struct layeredCase
+:
+    test::partitionedSurface
 {
-    CoarseMesh coarse;
-    std::vector<label> cellPart;
-    FineSurface part;       // this rank's part surface
     FineSurface whole;      // the one-part surface: the serial twin
     std::map<barycentricId, label> wholeIndex;
 };
@@ -58,23 +54,12 @@ const layeredCase& theCase()
 {
     static layeredCase c = []
     {
-        const Communicator& comm = test::world();
-        layeredCase c;
-        if (comm.master())
-        {
-            c.coarse = test::cubeMesh(4);
-        }
-        broadcastCoarseMesh(comm, c.coarse);
-        c.cellPart = partitionCoarseMesh(comm, c.coarse);
-        const boundaryEdgeSurfaces edges(c.coarse);
-        c.part = refineSurface
-        (
-            c.coarse, partitionSurface(c.coarse, c.cellPart, comm.rank()), edges, nullptr, levels
-        );
+        layeredCase c{test::partitionedCube(4, levels), {}, {}};
         const std::vector<label> onePart(c.coarse.nCells(), 0);
         c.whole = refineSurface
         (
-            c.coarse, partitionSurface(c.coarse, onePart, 0), edges, nullptr, levels
+            c.coarse, partitionSurface(c.coarse, onePart, 0),
+            boundaryEdgeSurfaces(c.coarse), nullptr, levels
         );
         bend(c.part);
         bend(c.whole);
