@@ -40,6 +40,13 @@ volumeMeshParameters partitionNamed(const std::string& what)
     return p;
 }
 
+//- A failingMesher whose optimiser is not where its failures come from
+//  (as HXT's quality pass): its retries keep their optimisation steps.
+struct curingOptimiserMesher : failingMesher
+{
+    bool optimiserMayFail() const override { return false; }
+};
+
 } // End anonymous namespace
 
 
@@ -96,10 +103,6 @@ TEST(partitionVolume, retriesWithoutARiskyOptimiserAndWithMoreOfACuringOne)
     // Netgen's optimiser is where its crashes live: its retry goes without
     // it. HXT's quality pass removes the slivers the contract refuses: its
     // retry gets twice the steps.
-    struct curingOptimiserMesher : failingMesher
-    {
-        bool optimiserMayFail() const override { return false; }
-    };
     const closedSurface sphere = icosphere(1);
     volumeMeshParameters p = partitionNamed("partition 1");
     p.optimisationSteps = 3;
@@ -129,10 +132,6 @@ TEST(partitionVolume, aFailureWithoutStepsIsRetriedWithStepsNeverTheSameWay)
     // optimisationSteps 0 asks for speed; a mesh that failed without steps
     // fails again without them, so every retry and the fallback have the
     // default steps, say so, and no attempt repeats an earlier one
-    struct curingOptimiserMesher : failingMesher
-    {
-        bool optimiserMayFail() const override { return false; }
-    };
     const closedSurface sphere = icosphere(1);
     volumeMeshParameters p = partitionNamed("partition 1");
     p.optimisationSteps = 0;
