@@ -40,6 +40,25 @@ volumeMeshParameters partitionNamed(const std::string& what)
     return p;
 }
 
+//- Why meshers (in order, with their retries) could not mesh a small
+//  sphere (icosphere(1)) with parameters p.
+std::string sphereFailures
+(
+    const std::vector<std::unique_ptr<VolumeMesher>>& meshers,
+    const volumeMeshParameters& p
+)
+{
+    const closedSurface sphere = icosphere(1);
+    return errorOf([&]
+    {
+        meshVolumeWithFallbacks
+        (
+            meshers, sphere.points, sphere.triangles, p,
+            tempFile("failedPartition1.stl"), ""
+        );
+    });
+}
+
 //- A failingMesher whose optimiser is not where its failures come from
 //  (as HXT's quality pass): its retries keep their optimisation steps.
 struct curingOptimiserMesher : failingMesher
@@ -103,24 +122,13 @@ TEST(partitionVolume, retriesWithoutARiskyOptimiserAndWithMoreOfACuringOne)
     // Netgen's optimiser is where its crashes live: its retry goes without
     // it. HXT's quality pass removes the slivers the contract refuses: its
     // retry gets twice the steps.
-    const closedSurface sphere = icosphere(1);
     volumeMeshParameters p = partitionNamed("partition 1");
     p.optimisationSteps = 3;
-    const auto failuresOf = [&](std::unique_ptr<VolumeMesher> m)
-    {
-        return errorOf([&]
-        {
-            meshVolumeWithFallbacks
-            (
-                meshers(std::move(m)), sphere.points, sphere.triangles, p,
-                tempFile("failedPartition1.stl"), ""
-            );
-        });
-    };
-    const std::string risky = failuresOf(std::make_unique<failingMesher>());
+    const std::string risky = sphereFailures(meshers(std::make_unique<failingMesher>()), p);
     EXPECT_HAS(risky, "attempt 2 (failing; optimisationSteps 0)");
     EXPECT_HAS(risky, "attempt 3 (failing; optimisationSteps 0, grading <= 0.2)");
-    const std::string curing = failuresOf(std::make_unique<curingOptimiserMesher>());
+    const std::string curing =
+        sphereFailures(meshers(std::make_unique<curingOptimiserMesher>()), p);
     EXPECT_HAS(curing, "attempt 2 (failing; optimisationSteps 6)");
     EXPECT_HAS(curing, "attempt 3 (failing; optimisationSteps 6, grading <= 0.2)");
     EXPECT_FALSE(VolumeMesher::New("hxt")->optimiserMayFail());
@@ -132,20 +140,11 @@ TEST(partitionVolume, aFailureWithoutStepsIsRetriedWithStepsNeverTheSameWay)
     // optimisationSteps 0 asks for speed; a mesh that failed without steps
     // fails again without them, so every retry and the fallback have the
     // default steps, say so, and no attempt repeats an earlier one
-    const closedSurface sphere = icosphere(1);
     volumeMeshParameters p = partitionNamed("partition 1");
     p.optimisationSteps = 0;
     const auto failuresOf = [&](std::unique_ptr<VolumeMesher> m)
     {
-        return errorOf([&]
-        {
-            meshVolumeWithFallbacks
-            (
-                meshers(std::move(m), std::make_unique<crashingMesher>()),
-                sphere.points, sphere.triangles, p,
-                tempFile("failedPartition1.stl"), ""
-            );
-        });
+        return sphereFailures(meshers(std::move(m), std::make_unique<crashingMesher>()), p);
     };
     const int defaultSteps = volumeMeshParameters().optimisationSteps;
     ASSERT_GT(defaultSteps, 0);
