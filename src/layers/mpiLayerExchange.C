@@ -27,6 +27,22 @@ struct wholeCodec
     const barycentricId& decode(const wire& w) const { return w; }
 };
 
+// body(codec) with the exchange's codec: ids packed where they fit
+// (mpiLayerExchange::packed), else whole. The one place that chooses, for
+// every exchange of the kernel
+template<class Body>
+void withCodec(bool packed, int levels, const Body& body)
+{
+    if (packed)
+    {
+        body(packedCodec{levels});
+    }
+    else
+    {
+        body(wholeCodec{});
+    }
+}
+
 // One triangle's share of a shared point's sum, as sent
 template<class Wire>
 struct wireContribution
@@ -221,14 +237,11 @@ void pmsh::mpiLayerExchange::gatherContributions
         );
     }
     plan(ids);
-    if (packed_)
-    {
-        gatherAs(packedCodec{levels_}, ids, contributions);
-    }
-    else
-    {
-        gatherAs(wholeCodec{}, ids, contributions);
-    }
+    withCodec
+    (
+        packed_, levels_,
+        [&](const auto& codec) { gatherAs(codec, ids, contributions); }
+    );
 }
 
 
@@ -247,14 +260,11 @@ void pmsh::mpiLayerExchange::minimum
         );
     }
     plan(ids);
-    if (packed_)
-    {
-        minimumAs(packedCodec{levels_}, ids, values);
-    }
-    else
-    {
-        minimumAs(wholeCodec{}, ids, values);
-    }
+    withCodec
+    (
+        packed_, levels_,
+        [&](const auto& codec) { minimumAs(codec, ids, values); }
+    );
 }
 
 

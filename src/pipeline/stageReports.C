@@ -9,6 +9,20 @@ using Foam::fixed;
 using Foam::setprecision;
 using Foam::setw;
 
+namespace
+{
+
+// A figure's spread over the ranks as the stages log it, in the stream's
+// current format: "    <what> per rank min/avg/max: <min> / <avg> / <max>"
+void logPerRank(const char* what, const pmsh::minAvgMax& n)
+{
+    Info<< "    " << what << " per rank min/avg/max: " << n.min << " / " << n.avg
+        << " / " << n.max << '\n';
+}
+
+} // End anonymous namespace
+
+
 std::string pmsh::rankPrefix(const Communicator& comm)
 {
     return comm.parallel() ? "[" + std::to_string(comm.rank()) + "] " : "";
@@ -138,9 +152,7 @@ void pmsh::logSurfaceSizes(const Communicator& comm, const FineSurface& surface)
     Info << fixed << setprecision(0);
     if (comm.parallel())
     {
-        Info
-            << "    fine surface triangles per rank min/avg/max: "
-            << n.min << " / " << n.avg << " / " << n.max << '\n';
+        logPerRank("fine surface triangles", n);
     }
     else
     {
@@ -204,10 +216,9 @@ void pmsh::balanceAndLog
             << " -> " << stats.after << " (" << stats.moved << " cells moved)\n"
             << defaultfloat;
     }
-    Info
-        << fixed << setprecision(0)
-        << "    fine cells per rank min/avg/max: " << n.min << " / " << n.avg
-        << " / " << n.max << '\n' << defaultfloat;
+    Info << fixed << setprecision(0);
+    logPerRank("fine cells", n);
+    Info << defaultfloat;
 }
 
 
@@ -230,9 +241,7 @@ std::int64_t pmsh::logVolumeMeshing
     Info << fixed << setprecision(0);
     if (comm.parallel())
     {
-        Info
-            << "    fine cells per rank min/avg/max: "
-            << n.min << " / " << n.avg << " / " << n.max << '\n';
+        logPerRank("fine cells", n);
     }
     Info << "    fine cells: " << nCells << '\n' << defaultfloat;
     return nCells;
@@ -254,11 +263,8 @@ void pmsh::logWritten
     Info << fixed << setprecision(0);
     if (comm.parallel())
     {
-        Info
-            << "    faces per rank min/avg/max: " << faces.min << " / " << faces.avg
-            << " / " << faces.max << '\n'
-            << "    points per rank min/avg/max: " << points.min << " / " << points.avg
-            << " / " << points.max << '\n';
+        logPerRank("faces", faces);
+        logPerRank("points", points);
     }
     else
     {

@@ -448,51 +448,24 @@ void addProcessorPatches
             );
         }
     }
-    std::sort(faces.begin(), faces.end());
-
-    for (std::size_t i = 0; i < faces.size(); ++i)
-    {
-        const processorFace& pf = faces[i];
-        const auto& k = pf.key;
-        const bool newPatch = i == 0 || pf.neighbProcNo != faces[i - 1].neighbProcNo;
-        if (newPatch)
+    detail::layOutProcessorPatches
+    (
+        mesh, faces, myProcNo,
+        [&](const processorFace& pf)
         {
-            detail::addProcessorPatch(mesh, myProcNo, pf.neighbProcNo);
+            quadVerts f, r;
+            const int n = m.pointsOf(pf.id, f);
+            const int first = detail::smallestGlobalIdAt(f, n, globalPointIds);
+            r = f;
+            for (int j = 0; j < n; ++j)
+            {
+                r[j] = f[(first + j) % n];
+            }
+            mesh.faces.emplace_back();
+            setFace(mesh, mesh.faces.size() - 1, r, n);
+            mesh.owner.push_back(m.cellOf(pf.id));
         }
-        if
-        (
-            k[1] == k[2] || k[2] == k[3] || (k[0] >= 0 && k[0] == k[1])
-         || (!newPatch && k == faces[i - 1].key)
-        )
-        {
-            throw FatalError
-            (
-                msg() << "Patch " << mesh.patches.back().name << ": two faces or"
-                    " two points of a face have the same global point ids ("
-                    << k[0] << ' ' << k[1] << ' ' << k[2] << ' ' << k[3]
-                    << ", -1: none).\nGlobal point ids must be unique per point",
-                where
-            );
-        }
-        ++mesh.patches.back().size;
-
-        // Rotated so that the point with the smallest global id comes first
-        quadVerts f, r;
-        const int n = m.pointsOf(pf.id, f);
-        int first = 0;
-        for (int j = 1; j < n; ++j)
-        {
-            if (globalPointIds[f[j]] < globalPointIds[f[first]]) first = j;
-        }
-        r = f;
-        for (int j = 0; j < n; ++j)
-        {
-            r[j] = f[(first + j) % n];
-        }
-        mesh.faces.emplace_back();
-        setFace(mesh, mesh.faces.size() - 1, r, n);
-        mesh.owner.push_back(m.cellOf(pf.id));
-    }
+    );
 }
 
 } // End anonymous namespace

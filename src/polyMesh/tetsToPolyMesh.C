@@ -298,34 +298,6 @@ void checkRegions
 }
 
 
-//- Check the input sizes, indices, cell volumes, point usage, patches and
-//  regions (the cells and the boundary are matched afterwards).
-void checkInput
-(
-    const std::vector<point3>& points,
-    const std::vector<tetVerts>& tets,
-    const std::vector<prismVerts>& prisms,
-    const std::vector<triVerts>& boundaryTriangles,
-    const std::vector<label>& boundaryRegion,
-    const std::vector<quadVerts>& boundaryQuads,
-    const std::vector<label>& quadRegion,
-    const std::vector<meshPatch>& physicalPatches,
-    label myProcNo,
-    const std::vector<label>& globalPointIds
-)
-{
-    checkSizes
-    (
-        points.size(), boundaryTriangles.size(), boundaryRegion,
-        boundaryQuads.size(), quadRegion, myProcNo, globalPointIds
-    );
-    checkPatchNames(physicalPatches);
-    checkCellsAndFaces(points, tets, prisms, boundaryTriangles, boundaryQuads);
-    checkRegions(boundaryRegion, "triangle", physicalPatches, myProcNo, globalPointIds);
-    checkRegions(quadRegion, "quad", physicalPatches, myProcNo, globalPointIds);
-}
-
-
 //- Internal faces: owner < neighbour, ordered by (owner, neighbour), each
 //  outward from its owner (towards the neighbour).
 void addInternalFaces
@@ -432,38 +404,17 @@ void addProcessorPatches
             }
         }
     }
-    std::sort(faces.begin(), faces.end());
-
-    for (std::size_t i = 0; i < faces.size(); ++i)
-    {
-        const processorFace& pf = faces[i];
-        const auto& k = pf.key;
-        const bool newPatch = i == 0 || pf.neighbProcNo != faces[i - 1].neighbProcNo;
-        if (newPatch)
+    detail::layOutProcessorPatches
+    (
+        mesh, faces, myProcNo,
+        [&](const processorFace& pf)
         {
-            detail::addProcessorPatch(mesh, myProcNo, pf.neighbProcNo);
+            const triVerts f = tetFace(tets[pf.id/4], int(pf.id % 4));
+            const int first = detail::smallestGlobalIdAt(f, 3, globalPointIds);
+            mesh.faces.push_back({f[first], f[(first + 1) % 3], f[(first + 2) % 3]});
+            mesh.owner.push_back(label(pf.id/4));
         }
-        if (k[0] == k[1] || k[1] == k[2] || (!newPatch && k == faces[i - 1].key))
-        {
-            throw FatalError
-            (
-                msg() << "Patch " << mesh.patches.back().name << ": two faces or"
-                    " two points of a face have the same global point ids ("
-                    << k[0] << ' ' << k[1] << ' ' << k[2] << ").\n"
-                    "Global point ids must be unique per point",
-                where
-            );
-        }
-        ++mesh.patches.back().size;
-
-        // Rotated so that the point with the smallest global id comes first
-        const triVerts f = tetFace(tets[pf.id/4], int(pf.id % 4));
-        int first = 0;
-        if (globalPointIds[f[1]] < globalPointIds[f[first]]) first = 1;
-        if (globalPointIds[f[2]] < globalPointIds[f[first]]) first = 2;
-        mesh.faces.push_back({f[first], f[(first + 1) % 3], f[(first + 2) % 3]});
-        mesh.owner.push_back(label(pf.id/4));
-    }
+    );
 }
 
 } // End anonymous namespace
@@ -483,11 +434,17 @@ pmsh::tetPolyMesh pmsh::tetsToPolyMesh
     const std::vector<label>& quadRegion
 )
 {
-    checkInput
+    // The input's sizes, indices, cell volumes, point usage, patches and
+    // regions (the cells and the boundary are matched afterwards)
+    checkSizes
     (
-        points, tets, prisms, boundaryTriangles, boundaryRegion,
-        boundaryQuads, quadRegion, physicalPatches, myProcNo, globalPointIds
+        points.size(), boundaryTriangles.size(), boundaryRegion,
+        boundaryQuads.size(), quadRegion, myProcNo, globalPointIds
     );
+    checkPatchNames(physicalPatches);
+    checkCellsAndFaces(points, tets, prisms, boundaryTriangles, boundaryQuads);
+    checkRegions(boundaryRegion, "triangle", physicalPatches, myProcNo, globalPointIds);
+    checkRegions(quadRegion, "quad", physicalPatches, myProcNo, globalPointIds);
     if (!prisms.empty() || !boundaryQuads.empty())
     {
         return detail::mixedCellsToPolyMesh

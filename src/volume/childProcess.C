@@ -145,21 +145,39 @@ void waitLogging
     }
 }
 
+// All n bytes through move(at, count), a read or a write that may move
+// fewer than count bytes from offset `at` on: again where it stopped, also
+// after a signal interrupted it. False at an error or the end of the
+// stream. One loop for both directions, so that they end alike.
+template<class Move>
+bool moveAll(std::size_t n, const Move& move)
+{
+    std::size_t done = 0;
+    while (done < n)
+    {
+        const ssize_t moved = move(done, n - done);
+        if (moved < 0 && errno == EINTR) continue;
+        if (moved <= 0) return false;
+        done += std::size_t(moved);
+    }
+    return true;
+}
+
 bool writeAll(int fd, const void* data, std::size_t n)
 {
     const char* p = static_cast<const char*>(data);
-    while (n > 0)
-    {
-        // A socket (the request) whose reader died fails here, not by
-        // SIGPIPE, which would end the caller
-        ssize_t w = ::send(fd, p, n, MSG_NOSIGNAL);
-        if (w < 0 && errno == ENOTSOCK) w = ::write(fd, p, n);
-        if (w < 0 && errno == EINTR) continue;
-        if (w <= 0) return false;
-        p += w;
-        n -= std::size_t(w);
-    }
-    return true;
+    return moveAll
+    (
+        n,
+        [&](std::size_t at, std::size_t count)
+        {
+            // A socket (the request) whose reader died fails here, not by
+            // SIGPIPE, which would end the caller
+            ssize_t w = ::send(fd, p + at, count, MSG_NOSIGNAL);
+            if (w < 0 && errno == ENOTSOCK) w = ::write(fd, p + at, count);
+            return w;
+        }
+    );
 }
 
 template<class T>
@@ -172,15 +190,11 @@ bool writeArray(int fd, const std::vector<T>& v)
 bool readAll(int fd, void* data, std::size_t n)
 {
     char* p = static_cast<char*>(data);
-    while (n > 0)
-    {
-        const ssize_t r = ::read(fd, p, n);
-        if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) return false;
-        p += r;
-        n -= std::size_t(r);
-    }
-    return true;
+    return moveAll
+    (
+        n,
+        [&](std::size_t at, std::size_t count) { return ::read(fd, p + at, count); }
+    );
 }
 
 // Straight into the array: no second copy of a mesh of millions of cells
@@ -229,46 +243,65 @@ struct mesherRequest
     volumeMeshParameters parameters;
 };
 
-bool writeRequest(int fd, const mesherRequest& r)
+// Every field of a request through pipe, in the one order that the
+// parent writes and the child reads them: pipe(x) writes or reads x as
+// its type travels (a string, an array or a value), pipe.resize sizes a
+// list being read (a writer's does nothing)
+template<class Pipe, class Request>
+bool transferRequest(const Pipe& pipe, Request& r)
 {
-    const volumeMeshParameters& p = r.parameters;
+    auto& p = r.parameters;
+    std::uint64_t nRegions = p.regions.size();
     bool ok =
-        writeString(fd, r.mesher) && writeArray(fd, r.points) && writeArray(fd, r.triangles)
-     && writeValue(fd, p.maxCellSize) && writeValue(fd, p.grading)
-     && writeValue(fd, p.optimisationSteps) && writeValue(fd, p.threads)
-     && writeString(fd, p.what) && writeArray(fd, p.interfaceTriangles)
-     && writeValue(fd, std::uint64_t(p.regions.size()));
-    for (const sizeRegion& g : p.regions)
+        pipe(r.mesher) && pipe(r.points) && pipe(r.triangles)
+     && pipe(p.maxCellSize) && pipe(p.grading)
+     && pipe(p.optimisationSteps) && pipe(p.threads)
+     && pipe(p.what) && pipe(p.interfaceTriangles)
+     && pipe(nRegions);
+    pipe.resize(p.regions, ok ? nRegions : 0);
+    for (auto& g : p.regions)
     {
         ok = ok
-         && writeString(fd, g.name) && writeValue(fd, g.type)
-         && writeValue(fd, g.min) && writeValue(fd, g.max) && writeValue(fd, g.centre)
-         && writeValue(fd, g.point1) && writeValue(fd, g.point2)
-         && writeValue(fd, g.radius) && writeValue(fd, g.size);
+         && pipe(g.name) && pipe(g.type)
+         && pipe(g.min) && pipe(g.max) && pipe(g.centre)
+         && pipe(g.point1) && pipe(g.point2)
+         && pipe(g.radius) && pipe(g.size);
     }
     return ok;
 }
 
+struct requestWriter
+{
+    int fd;
+    bool operator()(const std::string& s) const { return writeString(fd, s); }
+    template<class T>
+    bool operator()(const std::vector<T>& v) const { return writeArray(fd, v); }
+    template<class T>
+    bool operator()(const T& x) const { return writeValue(fd, x); }
+    template<class T>
+    void resize(const std::vector<T>&, std::uint64_t) const {}
+};
+
+struct requestReader
+{
+    int fd;
+    bool operator()(std::string& s) const { return readString(fd, s); }
+    template<class T>
+    bool operator()(std::vector<T>& v) const { return readArray(fd, v); }
+    template<class T>
+    bool operator()(T& x) const { return readValue(fd, x); }
+    template<class T>
+    void resize(std::vector<T>& v, std::uint64_t n) const { v.resize(n); }
+};
+
+bool writeRequest(int fd, const mesherRequest& r)
+{
+    return transferRequest(requestWriter{fd}, r);
+}
+
 bool readRequest(int fd, mesherRequest& r)
 {
-    volumeMeshParameters& p = r.parameters;
-    std::uint64_t nRegions = 0;
-    bool ok =
-        readString(fd, r.mesher) && readArray(fd, r.points) && readArray(fd, r.triangles)
-     && readValue(fd, p.maxCellSize) && readValue(fd, p.grading)
-     && readValue(fd, p.optimisationSteps) && readValue(fd, p.threads)
-     && readString(fd, p.what) && readArray(fd, p.interfaceTriangles)
-     && readValue(fd, nRegions);
-    p.regions.resize(ok ? nRegions : 0);
-    for (sizeRegion& g : p.regions)
-    {
-        ok = ok
-         && readString(fd, g.name) && readValue(fd, g.type)
-         && readValue(fd, g.min) && readValue(fd, g.max) && readValue(fd, g.centre)
-         && readValue(fd, g.point1) && readValue(fd, g.point2)
-         && readValue(fd, g.radius) && readValue(fd, g.size);
-    }
-    return ok;
+    return transferRequest(requestReader{fd}, r);
 }
 
 // The executable that meshers run in, fresh (meshInFreshProcesses); empty:

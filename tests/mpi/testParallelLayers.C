@@ -8,12 +8,9 @@
 // by barycentric id, bit for bit.
 
 #include "mpiTestMain.H"
-#include "coarseMesh.H"
-#include "cubeMesh.H"
 #include "globalNumbering.H"
 #include "mpiLayerExchange.H"
-#include "partitionCoarseMesh.H"
-#include "surfaceRefinement.H"
+#include "partitionedCube.H"
 #include "wallLayers.H"
 
 #include <algorithm>
@@ -32,10 +29,9 @@ namespace
 const int levels = 2;
 
 struct layeredCase
+:
+    test::partitionedSurface
 {
-    CoarseMesh coarse;
-    std::vector<label> cellPart;
-    FineSurface part;       // this rank's part surface
     FineSurface whole;      // the one-part surface: the serial twin
     std::map<barycentricId, label> wholeIndex;
 };
@@ -58,23 +54,12 @@ const layeredCase& theCase()
 {
     static layeredCase c = []
     {
-        const Communicator& comm = test::world();
-        layeredCase c;
-        if (comm.master())
-        {
-            c.coarse = test::cubeMesh(4);
-        }
-        broadcastCoarseMesh(comm, c.coarse);
-        c.cellPart = partitionCoarseMesh(comm, c.coarse);
-        const boundaryEdgeSurfaces edges(c.coarse);
-        c.part = refineSurface
-        (
-            c.coarse, partitionSurface(c.coarse, c.cellPart, comm.rank()), edges, nullptr, levels
-        );
+        layeredCase c{test::partitionedCube(4, levels), {}, {}};
         const std::vector<label> onePart(c.coarse.nCells(), 0);
         c.whole = refineSurface
         (
-            c.coarse, partitionSurface(c.coarse, onePart, 0), edges, nullptr, levels
+            c.coarse, partitionSurface(c.coarse, onePart, 0),
+            boundaryEdgeSurfaces(c.coarse), nullptr, levels
         );
         bend(c.part);
         bend(c.whole);
@@ -215,9 +200,15 @@ pointLayers serialOf(const layeredCase& c, const std::vector<pointLayers>& seria
     return ::testing::AssertionSuccess();
 }
 
-// On the master: every holder of a point has the same bits
-void expectHoldersAgree(const std::vector<std::vector<pointLayers>>& all)
+// Every holder of a point has the same bits: each rank's records
+// compared on the master (collective)
+void expectHoldersAgree(const std::vector<pointLayers>& ours)
 {
+    const auto all = test::gatherOnMaster(ours);
+    if (!test::world().master())
+    {
+        return;
+    }
     std::map<barycentricId, pointLayers> byId;
     label nCompared = 0, nDiffer = 0;
     for (const auto& rank : all)
@@ -288,6 +279,29 @@ std::vector<int> ringsFromInterface(const FineSurface& s)
     return rings;
 }
 
+// Wall layers grown on this rank's part through the MPI exchange and on
+// the serial twin (noLayerExchange), with their points' records
+struct grownTwins
+{
+    wallLayers mine;
+    wallLayers one;
+    std::vector<pointLayers> ours;
+    std::vector<pointLayers> ref;
+};
+
+grownTwins growTwins(const std::map<label, layerSpecification>& specs)
+{
+    const layeredCase& c = theCase();
+    mpiLayerExchange exchange(test::world(), c.coarse, c.cellPart, levels);
+    noLayerExchange serial;
+    grownTwins g;
+    g.mine = grow(c.part, specs, exchange);
+    g.one = grow(c.whole, specs, serial);
+    g.ours = layerRecords(c.part, g.mine);
+    g.ref = layerRecords(c.whole, g.one);
+    return g;
+}
+
 } // End anonymous namespace
 
 
@@ -354,34 +368,22 @@ TEST(parallelLayers, thinLayersAreTheSerialLayersBitForBitOnEveryRank)
     // so nothing depends on the partition
     const Communicator& comm = test::world();
     const layeredCase& c = theCase();
-    const auto specs = walls(3, 0.001, 1.2);
+    const grownTwins g = growTwins(walls(3, 0.001, 1.2));
+    EXPECT_EQ(comm.sum(std::int64_t(g.mine.stats.nInterfaceLimited)), 0);
 
-    mpiLayerExchange exchange(comm, c.coarse, c.cellPart, levels);
-    const wallLayers mine = grow(c.part, specs, exchange);
-    noLayerExchange serial;
-    const wallLayers one = grow(c.whole, specs, serial);
-    EXPECT_EQ(comm.sum(std::int64_t(mine.stats.nInterfaceLimited)), 0);
-
-    const std::vector<pointLayers> ours = layerRecords(c.part, mine);
-    const std::vector<pointLayers> ref = layerRecords(c.whole, one);
     label nLayered = 0, nDiffer = 0;
-    for (const pointLayers& r : ours)
+    for (const pointLayers& r : g.ours)
     {
         nLayered += r.nLayers > 0;
-        const ::testing::AssertionResult same = sameAsSerial(r, serialOf(c, ref, r.id));
+        const ::testing::AssertionResult same = sameAsSerial(r, serialOf(c, g.ref, r.id));
         if (!same && ++nDiffer <= 5)
         {
             ADD_FAILURE() << same.message();
         }
     }
-    EXPECT_EQ(nDiffer, 0) << "of " << ours.size() << " points";
+    EXPECT_EQ(nDiffer, 0) << "of " << g.ours.size() << " points";
     EXPECT_GT(comm.sum(std::int64_t(nLayered)), 0);
-
-    const auto all = test::gatherOnMaster(ours);
-    if (comm.master())
-    {
-        expectHoldersAgree(all);
-    }
+    expectHoldersAgree(g.ours);
 }
 
 
@@ -393,26 +395,20 @@ TEST(parallelLayers, thickLayersAgreeOnEveryHolderAndAwayFromInterfacesWithSeria
     // the serial ones
     const Communicator& comm = test::world();
     const layeredCase& c = theCase();
-    const auto specs = walls(4, 0.012, 1.3);
+    const grownTwins g = growTwins(walls(4, 0.012, 1.3));
+    ASSERT_GT(g.one.stats.nInvalidLimited + g.one.stats.nFeatureLimited, 0);
 
-    mpiLayerExchange exchange(comm, c.coarse, c.cellPart, levels);
-    const wallLayers mine = grow(c.part, specs, exchange);
-    noLayerExchange serial;
-    const wallLayers one = grow(c.whole, specs, serial);
-    ASSERT_GT(one.stats.nInvalidLimited + one.stats.nFeatureLimited, 0);
-
-    const std::vector<pointLayers> ours = layerRecords(c.part, mine);
-    const std::vector<pointLayers> ref = layerRecords(c.whole, one);
     const std::vector<int> rings = ringsFromInterface(c.part);
     label nFar = 0, nDiffer = 0;
-    for (label p = 0; p < label(ours.size()); ++p)
+    for (label p = 0; p < label(g.ours.size()); ++p)
     {
         if (rings[p] < 8)
         {
             continue;
         }
         ++nFar;
-        const ::testing::AssertionResult same = sameAsSerial(ours[p], serialOf(c, ref, ours[p].id));
+        const ::testing::AssertionResult same =
+            sameAsSerial(g.ours[p], serialOf(c, g.ref, g.ours[p].id));
         if (!same && ++nDiffer <= 5)
         {
             ADD_FAILURE() << same.message() << " (" << rings[p] << " rings from an interface)";
@@ -420,12 +416,7 @@ TEST(parallelLayers, thickLayersAgreeOnEveryHolderAndAwayFromInterfacesWithSeria
     }
     EXPECT_EQ(nDiffer, 0) << "of " << nFar << " points far from interfaces";
     EXPECT_GT(comm.sum(std::int64_t(nFar)), 0);
-
-    const auto all = test::gatherOnMaster(ours);
-    if (comm.master())
-    {
-        expectHoldersAgree(all);
-    }
+    expectHoldersAgree(g.ours);
 }
 
 

@@ -6,14 +6,11 @@
 // 32-bit ones.
 
 #include "mpiTestMain.H"
-#include "coarseMesh.H"
-#include "cubeMesh.H"
 #include "failTogether.H"
 #include "globalNumbering.H"
 #include "labelLimit.H"
-#include "partitionCoarseMesh.H"
+#include "partitionedCube.H"
 #include "procAddressing.H"
-#include "surfaceRefinement.H"
 #include "testUtilities.H"
 
 #include <mpi.h>
@@ -28,32 +25,6 @@ using namespace pmsh;
 
 namespace
 {
-
-struct sharedSurface
-{
-    CoarseMesh coarse;
-    std::vector<label> cellPart;
-    FineSurface surface;
-};
-
-// Master builds the coarse mesh, every rank receives it: as pmshFoam does
-sharedSurface refinedPart(int levels)
-{
-    const Communicator& comm = test::world();
-    sharedSurface s;
-    if (comm.master())
-    {
-        s.coarse = test::cubeMesh(5);
-    }
-    broadcastCoarseMesh(comm, s.coarse);
-    s.cellPart = partitionCoarseMesh(comm, s.coarse);
-    s.surface = refineSurface
-    (
-        s.coarse, partitionSurface(s.coarse, s.cellPart, comm.rank()),
-        boundaryEdgeSurfaces(s.coarse), nullptr, levels
-    );
-    return s;
-}
 
 struct pointRecord
 {
@@ -170,28 +141,28 @@ void expectUniqueAndContiguous
 
 TEST(parallelNumbering, everyRankGetsANonEmptyClosedPartSurface)
 {
-    const sharedSurface s = refinedPart(1);
-    EXPECT_GT(s.surface.triangles.size(), 0u);
+    const test::partitionedSurface s = test::partitionedCube(5, 1);
+    EXPECT_GT(s.part.triangles.size(), 0u);
     // Euler for a closed genus-0 surface: V = 2 + F/2
-    EXPECT_EQ(s.surface.points.size(), 2 + s.surface.triangles.size()/2);
+    EXPECT_EQ(s.part.points.size(), 2 + s.part.triangles.size()/2);
 }
 
 
 TEST(parallelNumbering, globalPointIdsAreUniqueAndContiguousAndSharedPointsAgree)
 {
     const Communicator& comm = test::world();
-    const sharedSurface s = refinedPart(2);
+    const test::partitionedSurface s = test::partitionedCube(5, 2);
     const label nInterior = 3 + 7*comm.rank();
-    const label nLocal = label(s.surface.points.size()) + nInterior;
+    const label nLocal = label(s.part.points.size()) + nInterior;
 
-    const globalPointNumbering numbering(comm, s.coarse, s.cellPart, s.surface, nLocal);
+    const globalPointNumbering numbering(comm, s.coarse, s.cellPart, s.part, nLocal);
     if (comm.size() > 1)
     {
         EXPECT_GT(comm.sum(std::int64_t(numbering.nShared())), 0);
     }
-    expectUniqueAndContiguous(s.surface, numbering.globalIds(), numbering.nGlobal());
+    expectUniqueAndContiguous(s.part, numbering.globalIds(), numbering.nGlobal());
 
-    const auto all = test::gatherOnMaster(records(s.surface, numbering.globalIds()));
+    const auto all = test::gatherOnMaster(records(s.part, numbering.globalIds()));
     if (comm.master())
     {
         expectHoldersAgree(all);

@@ -9,6 +9,7 @@
 #include "cubeMesh.H"
 #include "surfaceChecks.H"
 #include "testPaths.H"
+#include "testUtilities.H"
 #include "pmshError.H"
 
 // OpenFOAM
@@ -358,16 +359,12 @@ TEST_F(decomposition, aMissingRequiredDictionaryIsAFatalError)
 {
     const scratchDir dir;
     const std::string file = dir.path + "/myDecomposeParDict";
-    try
+    const std::string what = test::errorOf([&]
     {
         decompositionDict(Foam::fileName(file), 2, true);
-        FAIL() << "expected FatalError";
-    }
-    catch (const FatalError& e)
-    {
-        EXPECT_TRUE(contains(e.what(), file)) << e.what();
-        EXPECT_TRUE(contains(e.what(), "does not exist")) << e.what();
-    }
+    });
+    EXPECT_TRUE(contains(what, file)) << what;
+    EXPECT_TRUE(contains(what, "does not exist")) << what;
 }
 
 
@@ -378,15 +375,11 @@ TEST_F(decomposition, aBrokenDictionaryIsAFatalErrorNamingTheFile)
     (
         "decomposeParDict", std::string(foamHeader) + "method metis;\ncoeffs { n (2 2 1;\n"
     );
-    try
+    const std::string what = test::errorOf([&]
     {
         decompositionDict(Foam::fileName(file), 2);
-        FAIL() << "expected FatalError";
-    }
-    catch (const FatalError& e)
-    {
-        EXPECT_TRUE(contains(e.what(), file)) << e.what();
-    }
+    });
+    EXPECT_TRUE(contains(what, file)) << what;
 }
 
 
@@ -446,22 +439,17 @@ TEST_F(decomposition, theDictionaryComesFromTheCaseOrTheDecomposeParDictOption)
 TEST_F(decomposition, anUnknownMethodIsAFatalErrorNamingTheValidOnes)
 {
     const CoarseMesh m = test::cubeMesh(2);
-    try
+    const std::string what = test::errorOf([&]
     {
         partitionCells(m, 2, dictOf("method fooBar;"));
-        FAIL() << "expected FatalError";
-    }
-    catch (const FatalError& e)
+    });
+    EXPECT_TRUE(contains(what, "'fooBar'")) << what;
+    EXPECT_TRUE(contains(what, "Valid decomposition methods")) << what;
+    for (const char* valid : {"metis", "simple", "hierarchical"})
     {
-        const std::string what = e.what();
-        EXPECT_TRUE(contains(what, "'fooBar'")) << what;
-        EXPECT_TRUE(contains(what, "Valid decomposition methods")) << what;
-        for (const char* valid : {"metis", "simple", "hierarchical"})
-        {
-            EXPECT_TRUE(contains(what, valid)) << what;
-        }
-        EXPECT_FALSE(contains(what, "manual")) << what;
+        EXPECT_TRUE(contains(what, valid)) << what;
     }
+    EXPECT_FALSE(contains(what, "manual")) << what;
 }
 
 
@@ -469,62 +457,45 @@ TEST_F(decomposition, aFailingMethodIsAFatalErrorNamingItAndTheValidOnes)
 {
     // n (2 2 1) makes 4 parts, not 3: OpenFOAM's FatalError, as ours
     const CoarseMesh m = test::cubeMesh(3);
-    try
+    const std::string what = test::errorOf([&]
     {
         partitionCells(m, 3, dictOf("method simple; coeffs { n (2 2 1); }"));
-        FAIL() << "expected FatalError";
-    }
-    catch (const FatalError& e)
-    {
-        const std::string what = e.what();
-        EXPECT_TRUE(contains(what, "'simple'")) << what;
-        EXPECT_TRUE(contains(what, "failed")) << what;
-        EXPECT_TRUE(contains(what, "Valid decomposition methods")) << what;
-        EXPECT_TRUE(contains(what, "metis")) << what;
-    }
+    });
+    EXPECT_TRUE(contains(what, "'simple'")) << what;
+    EXPECT_TRUE(contains(what, "failed")) << what;
+    EXPECT_TRUE(contains(what, "Valid decomposition methods")) << what;
+    EXPECT_TRUE(contains(what, "metis")) << what;
 
     // A method without its coefficients
-    try
+    const std::string noCoefficients = test::errorOf([&]
     {
         partitionCells(m, 4, dictOf("method hierarchical;"));
-        FAIL() << "expected FatalError";
-    }
-    catch (const FatalError& e)
-    {
-        EXPECT_TRUE(contains(e.what(), "'hierarchical'")) << e.what();
-    }
+    });
+    EXPECT_TRUE(contains(noCoefficients, "'hierarchical'")) << noCoefficients;
 }
 
 
 TEST_F(decomposition, aMethodThatNeedsAPolyMeshIsAFatalError)
 {
     const CoarseMesh m = test::cubeMesh(2);
-    try
+    const std::string what = test::errorOf([&]
     {
         partitionCells(m, 2, dictOf("method manual; coeffs { dataFile \"decomp\"; }"));
-        FAIL() << "expected FatalError";
-    }
-    catch (const FatalError& e)
-    {
-        EXPECT_TRUE(contains(e.what(), "'manual'")) << e.what();
-        EXPECT_TRUE(contains(e.what(), "Valid decomposition methods")) << e.what();
-    }
+    });
+    EXPECT_TRUE(contains(what, "'manual'")) << what;
+    EXPECT_TRUE(contains(what, "Valid decomposition methods")) << what;
 }
 
 
 TEST_F(decomposition, noMethodIsAFatalError)
 {
     const CoarseMesh m = test::cubeMesh(2);
-    try
+    const std::string what = test::errorOf([&]
     {
         partitionCells(m, 2, dictOf("numberOfSubdomains 2;"));
-        FAIL() << "expected FatalError";
-    }
-    catch (const FatalError& e)
-    {
-        EXPECT_TRUE(contains(e.what(), "method")) << e.what();
-        EXPECT_TRUE(contains(e.what(), "Valid decomposition methods")) << e.what();
-    }
+    });
+    EXPECT_TRUE(contains(what, "method")) << what;
+    EXPECT_TRUE(contains(what, "Valid decomposition methods")) << what;
 }
 
 
@@ -620,16 +591,12 @@ TEST_F(partition, onePartIsAllZeroWhateverTheMethod)
 TEST_F(partition, moreRanksThanCoarseCellsIsAFatalErrorSayingWhatToDo)
 {
     const CoarseMesh m = test::cubeMesh(1);    // 6 cells
-    try
+    const std::string what = test::errorOf([&]
     {
         partitionCells(m, 7, dictOf("method metis;"));
-        FAIL() << "expected FatalError";
-    }
-    catch (const FatalError& e)
-    {
-        EXPECT_NE(std::string(e.what()).find("6 cells into 7 parts"), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find("maxCellSize"), std::string::npos);
-    }
+    });
+    EXPECT_NE(what.find("6 cells into 7 parts"), std::string::npos) << what;
+    EXPECT_NE(what.find("maxCellSize"), std::string::npos);
 }
 
 

@@ -110,57 +110,70 @@ label boxRegion(const point3& c, const point3& lo, const point3& hi)
 }
 
 
-//- Every OpenFOAM ordering and orientation rule, checked on a tetPolyMesh.
-void expectValidPolyMesh(const tetPolyMesh& mesh, const std::vector<tetVerts>& tets)
+//- Every OpenFOAM ordering and orientation rule, checked on a mesh whose
+//  cell c has the points cells[c] (a tet's 4 or a prism's 6), with faces
+//  of 3 and 4 points: each face on its cells, internal faces first with
+//  owner < neighbour in strict (owner, neighbour) order, normals from
+//  owner to neighbour and out of the domain, each cell closed by its 4 or
+//  5 faces, the patches contiguous after the internal faces. For the
+//  tet-only path and the path with prisms alike.
+void expectValidCells
+(
+    const tetPolyMesh& mesh,
+    const std::vector<std::vector<label>>& cells
+)
 {
     const auto& p = mesh.points;
     const label nInt = mesh.nInternalFaces();
+    const std::size_t nCells = cells.size();
 
-    ASSERT_EQ(mesh.nCells, label(tets.size()));
+    ASSERT_EQ(mesh.nCells, label(nCells));
     ASSERT_EQ(mesh.owner.size(), mesh.faces.size());
 
-    // Each tet has 4 faces: 4*nCells = 2*nInternal + nBoundary
-    EXPECT_EQ(4*mesh.nCells, 2*nInt + (mesh.nFaces() - nInt));
-
-    std::vector<point3> C(tets.size());
-    for (std::size_t c = 0; c < tets.size(); ++c)
+    std::vector<point3> C(nCells);
+    for (std::size_t c = 0; c < nCells; ++c)
     {
-        C[c] = cellCentre(p, tets[c]);
+        C[c] = centroid(p, cells[c]);
     }
+    auto onCell = [&](label c, label v)
+    {
+        return std::find(cells[c].begin(), cells[c].end(), v) != cells[c].end();
+    };
 
-    std::vector<vector3> sumS(tets.size(), {0, 0, 0});
-    std::vector<int> nCellFaces(tets.size(), 0);
-
+    std::vector<vector3> sumS(nCells, {0, 0, 0});
+    std::vector<double> sumMagS(nCells, 0);
+    std::vector<int> nCellFaces(nCells, 0);
+    label nFacePoints = 0;
     for (label f = 0; f < mesh.nFaces(); ++f)
     {
-        const triVerts& face = mesh.faces[f];
+        const std::vector<label> face = facePointsOf(mesh, f);
+        nFacePoints += label(face.size());
         const label own = mesh.owner[f];
         ASSERT_GE(own, 0);
         ASSERT_LT(own, mesh.nCells);
-
-        const vector3 S = faceNormal(p, face);
-        const point3 fc = centroid(p, {face[0], face[1], face[2]});
-
-        // The face's points are points of its owner tet
+        const vector3 S = areaVector(p, face);
+        const point3 fc = centroid(p, face);
         for (label v : face)
         {
-            EXPECT_NE
-            (
-                std::find(tets[own].begin(), tets[own].end(), v),
-                tets[own].end()
-            ) << "face " << f << " has a point not on its owner";
+            EXPECT_TRUE(onCell(own, v)) << "face " << f << " has a point not on its owner";
         }
-
         sumS[own] = sumS[own] + S;
+        sumMagS[own] += std::sqrt(magSqr(S));
         ++nCellFaces[own];
 
         if (f < nInt)
         {
             const label nei = mesh.neighbour[f];
-            EXPECT_LT(own, nei) << "face " << f;
+            ASSERT_LT(own, nei) << "face " << f;
+            ASSERT_LT(nei, mesh.nCells) << "face " << f;
+            for (label v : face)
+            {
+                EXPECT_TRUE(onCell(nei, v)) << "face " << f << " has a point not on its neighbour";
+            }
             EXPECT_GT(dot(S, C[nei] - C[own]), 0)
                 << "internal face " << f << " does not point owner->neighbour";
             sumS[nei] = sumS[nei] - S;
+            sumMagS[nei] += std::sqrt(magSqr(S));
             ++nCellFaces[nei];
             if (f > 0)
             {
@@ -176,11 +189,15 @@ void expectValidPolyMesh(const tetPolyMesh& mesh, const std::vector<tetVerts>& t
         }
     }
 
-    for (std::size_t c = 0; c < tets.size(); ++c)
+    for (std::size_t c = 0; c < nCells; ++c)
     {
-        EXPECT_EQ(nCellFaces[c], 4) << "cell " << c;
-        EXPECT_LT(std::sqrt(magSqr(sumS[c])), 1e-12) << "cell " << c << " not closed";
+        const bool prism = cells[c].size() == 6;
+        EXPECT_EQ(nCellFaces[c], prism ? 5 : 4) << "cell " << c;
+        EXPECT_LT(std::sqrt(magSqr(sumS[c])), 1e-12*sumMagS[c])
+            << (prism ? "prism" : "tet") << " cell " << c << " not closed";
     }
+    // 3 points a triangle, 4 a quad: the quads are exactly the faces of 4
+    EXPECT_EQ(nFacePoints, 3*mesh.nFaces() + label(mesh.quads.size()));
 
     // Patches: contiguous from nInternalFaces, in order, covering all faces
     label start = nInt;
@@ -191,6 +208,22 @@ void expectValidPolyMesh(const tetPolyMesh& mesh, const std::vector<tetVerts>& t
         start += pp.size;
     }
     EXPECT_EQ(start, mesh.nFaces());
+}
+
+
+//- expectValidCells on a mesh of tets: no quads, and each tet's 4 faces
+//  are 4*nCells = 2*nInternal + nBoundary.
+void expectValidPolyMesh(const tetPolyMesh& mesh, const std::vector<tetVerts>& tets)
+{
+    std::vector<std::vector<label>> cells;
+    for (const tetVerts& t : tets)
+    {
+        cells.push_back({t.begin(), t.end()});
+    }
+    expectValidCells(mesh, cells);
+    EXPECT_TRUE(mesh.quads.empty());
+    const label nInt = mesh.nInternalFaces();
+    EXPECT_EQ(4*mesh.nCells, 2*nInt + (mesh.nFaces() - nInt));
 }
 
 
@@ -710,17 +743,11 @@ TEST(tetsToPolyMesh, globalPointIdsOfWrongSizeAreAnError)
 namespace
 {
 
-//- Every OpenFOAM ordering and orientation rule, checked on a mesh of tets
-//  and prisms (cells of in, tets first), with faces of 3 and 4 points.
+//- expectValidCells on a mesh of tets and prisms (cells of in, tets
+//  first): its prisms counted, its quads listed by ascending face.
 void expectValidLayeredPolyMesh(const tetPolyMesh& mesh, const layeredRankInput& in)
 {
-    const auto& p = mesh.points;
-    const label nInt = mesh.nInternalFaces();
-    const std::size_t nCells = in.tets.size() + in.prisms.size();
-
-    ASSERT_EQ(mesh.nCells, label(nCells));
     ASSERT_EQ(mesh.nPrisms, label(in.prisms.size()));
-    ASSERT_EQ(mesh.owner.size(), mesh.faces.size());
     for (std::size_t q = 0; q < mesh.quads.size(); ++q)
     {
         ASSERT_GE(mesh.quads[q].face, 0);
@@ -730,86 +757,12 @@ void expectValidLayeredPolyMesh(const tetPolyMesh& mesh, const layeredRankInput&
             ASSERT_LT(mesh.quads[q - 1].face, mesh.quads[q].face) << "quads not ascending";
         }
     }
-
-    std::vector<std::vector<label>> cellPts(nCells);
-    std::vector<point3> C(nCells);
-    for (std::size_t c = 0; c < nCells; ++c)
+    std::vector<std::vector<label>> cells;
+    for (std::size_t c = 0; c < in.tets.size() + in.prisms.size(); ++c)
     {
-        cellPts[c] = in.cellPoints(c);
-        C[c] = centroid(p, cellPts[c]);
+        cells.push_back(in.cellPoints(c));
     }
-    auto onCell = [&](label c, label v)
-    {
-        return std::find(cellPts[c].begin(), cellPts[c].end(), v) != cellPts[c].end();
-    };
-
-    std::vector<vector3> sumS(nCells, {0, 0, 0});
-    std::vector<double> sumMagS(nCells, 0);
-    std::vector<int> nCellFaces(nCells, 0);
-    label nFacePoints = 0;
-    for (label f = 0; f < mesh.nFaces(); ++f)
-    {
-        const std::vector<label> face = facePointsOf(mesh, f);
-        nFacePoints += label(face.size());
-        const label own = mesh.owner[f];
-        ASSERT_GE(own, 0);
-        ASSERT_LT(own, mesh.nCells);
-        const vector3 S = areaVector(p, face);
-        const point3 fc = centroid(p, face);
-        for (label v : face)
-        {
-            EXPECT_TRUE(onCell(own, v)) << "face " << f << " has a point not on its owner";
-        }
-        sumS[own] = sumS[own] + S;
-        sumMagS[own] += std::sqrt(magSqr(S));
-        ++nCellFaces[own];
-
-        if (f < nInt)
-        {
-            const label nei = mesh.neighbour[f];
-            ASSERT_LT(own, nei) << "face " << f;
-            ASSERT_LT(nei, mesh.nCells) << "face " << f;
-            for (label v : face)
-            {
-                EXPECT_TRUE(onCell(nei, v)) << "face " << f << " has a point not on its neighbour";
-            }
-            EXPECT_GT(dot(S, C[nei] - C[own]), 0)
-                << "internal face " << f << " does not point owner->neighbour";
-            sumS[nei] = sumS[nei] - S;
-            sumMagS[nei] += std::sqrt(magSqr(S));
-            ++nCellFaces[nei];
-            if (f > 0)
-            {
-                const auto prev = std::make_pair(mesh.owner[f - 1], mesh.neighbour[f - 1]);
-                EXPECT_LT(prev, std::make_pair(own, nei))
-                    << "internal faces not in strict (owner, neighbour) order at " << f;
-            }
-        }
-        else
-        {
-            EXPECT_GT(dot(S, fc - C[own]), 0)
-                << "boundary face " << f << " does not point out of the domain";
-        }
-    }
-
-    for (std::size_t c = 0; c < nCells; ++c)
-    {
-        const bool prism = c >= in.tets.size();
-        EXPECT_EQ(nCellFaces[c], prism ? 5 : 4) << "cell " << c;
-        EXPECT_LT(std::sqrt(magSqr(sumS[c])), 1e-12*sumMagS[c])
-            << (prism ? "prism" : "tet") << " cell " << c << " not closed";
-    }
-    // 3 points a triangle, 4 a quad: the quads are exactly the faces of 4
-    EXPECT_EQ(nFacePoints, 3*mesh.nFaces() + label(mesh.quads.size()));
-
-    label start = nInt;
-    for (const meshPatch& pp : mesh.patches)
-    {
-        EXPECT_EQ(pp.start, start) << pp.name;
-        EXPECT_GE(pp.size, 0) << pp.name;
-        start += pp.size;
-    }
-    EXPECT_EQ(start, mesh.nFaces());
+    expectValidCells(mesh, cells);
 }
 
 
@@ -966,6 +919,34 @@ TEST(tetsToPolyMesh, layeredProcessorFacesAreReverseFaceOfEachOther)
     }
     EXPECT_GT(nTris, 0u);
     EXPECT_GT(nQuads, 0u);
+}
+
+
+TEST(tetsToPolyMesh, layeredRepeatedGlobalPointIdOnProcessorFaceIsAnError)
+{
+    // On an interface quad and on an interface triangle: the -1 that pads
+    // a triangle's key is no repeated point, two equal ids are
+    const layeredMesh m = layeredBlock(4, 2, 2, 2);
+    const std::vector<int> ranks = twoSlabs(m, 2.2);
+    const layeredRankInput in = makeLayeredRankInput(m, ranks, 0, boxRegion);
+    EXPECT_NO_THROW(build(in, boxPatches(), 0));
+    auto firstInterface = [](const std::vector<label>& regions)
+    {
+        return std::size_t(std::find_if(regions.begin(), regions.end(), isInterfaceRegion)
+            - regions.begin());
+    };
+    const std::size_t q = firstInterface(in.quadRegions);
+    const std::size_t t = firstInterface(in.triRegions);
+    ASSERT_LT(q, in.quads.size());
+    ASSERT_LT(t, in.tris.size());
+
+    layeredRankInput repeated = in;
+    repeated.globalIds[in.quads[q][2]] = in.globalIds[in.quads[q][0]];
+    EXPECT_FATAL(build(repeated, boxPatches(), 0), "same global point ids");
+    EXPECT_FATAL(build(repeated, boxPatches(), 0), ", -1: none).");
+    repeated = in;
+    repeated.globalIds[in.tris[t][1]] = in.globalIds[in.tris[t][0]];
+    EXPECT_FATAL(build(repeated, boxPatches(), 0), "same global point ids");
 }
 
 

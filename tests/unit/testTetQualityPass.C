@@ -183,14 +183,22 @@ std::vector<triVerts> cubeTriangles()
     };
 }
 
-std::vector<point3> cubeCorners()
+//- The unit cube as the star of one interior point: the tet of each of
+//  its boundary triangles (cubeTriangles) and that point, its point 8.
+TetMesh cubeStar(const point3& inside)
 {
-    std::vector<point3> p;
+    TetMesh m;
     for (int i = 0; i < 8; ++i)
     {
-        p.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+        m.points.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
     }
-    return p;
+    m.points.push_back(inside);
+    for (const triVerts& f : cubeTriangles())
+    {
+        // An outward triangle and a point inside: (a, c, b, p) is positive
+        m.tets.push_back({f[0], f[2], f[1], 8});
+    }
+    return m;
 }
 
 } // End anonymous namespace
@@ -231,15 +239,8 @@ TEST(tetQualityPass, movesABadInteriorPointAndKeepsTheBoundary)
 {
     // The cube as the star of one interior point, put close to a corner:
     // the faces between the tets lean badly
-    TetMesh m;
-    m.points = cubeCorners();
-    m.points.push_back({0.1, 0.12, 0.08});
+    TetMesh m = cubeStar({0.1, 0.12, 0.08});
     const std::vector<triVerts> triangles = cubeTriangles();
-    for (const triVerts& f : triangles)
-    {
-        // An outward triangle and a point inside: (a, c, b, p) is positive
-        m.tets.push_back({f[0], f[2], f[1], 8});
-    }
     const std::vector<point3> before = m.points;
     const double worstBefore = checkMeshMeasuresOf(m).maxNonOrthogonality;
 
@@ -390,14 +391,8 @@ TEST(tetQualityPass, sliverRemovalRemovesASliverAndLeavesFairCellsAlone)
     // pass's steps make better (about 60 degrees), but that checkMesh
     // accepts: sliver removal leaves them as they are
     {
-        TetMesh m;
-        m.points = cubeCorners();
-        m.points.push_back({0.12, 0.15, 0.1});
+        TetMesh m = cubeStar({0.12, 0.15, 0.1});
         const std::vector<triVerts> triangles = cubeTriangles();
-        for (const triVerts& f : triangles)
-        {
-            m.tets.push_back({f[0], f[2], f[1], 8});
-        }
         const TetMesh original = m;
         const double worst = checkMeshMeasuresOf(m).maxNonOrthogonality;
         ASSERT_GT(worst, 50);
