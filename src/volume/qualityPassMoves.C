@@ -40,8 +40,8 @@ bool pmsh::qualityPass::passMesh::improves
     if (!addressSet(oldSet, old, acrossOf, inSet)) return false;
     std::vector<double> before = setBadness(oldSet, acrossOf, inSet, pos);
     if (!addressSet(created, old, acrossOf, inSet)) return false;
-    createdBadness = setBadness(created, acrossOf, inSet, pos);
-    return better(createdBadness, before);
+    createdBadness = setBadness(created, acrossOf, inSet, pos, rejectionBound(before));
+    return !createdBadness.empty() && better(createdBadness, before);
 }
 
 
@@ -326,12 +326,14 @@ void pmsh::qualityPass::passMesh::smooth(label p)
     }
 
     point3 x = points_[p];
-    const auto at = [&](const point3& y)
+    // The star's faces with p at y; none if one is worse than `bound`
+    const auto at = [&](const point3& y, const double bound)
     {
         return setBadness
         (
             set, acrossOf, inSet,
-            [&](label q) -> const point3& { return q == p ? y : points_[q]; }
+            [&](label q) -> const point3& { return q == p ? y : points_[q]; },
+            bound
         );
     };
 
@@ -353,11 +355,11 @@ void pmsh::qualityPass::passMesh::smooth(label p)
     centre = (1.0/n)*centre;
     length /= n;
 
-    std::vector<double> current = at(x);
+    std::vector<double> current = at(x, infinite);
     bool moved = false;
     {
-        std::vector<double> b = at(centre);
-        if (better(b, current))
+        std::vector<double> b = at(centre, rejectionBound(current));
+        if (!b.empty() && better(b, current))
         {
             x = centre;
             current = b;
@@ -410,8 +412,8 @@ void pmsh::qualityPass::passMesh::smooth(label p)
         for (double step : {0.1, 0.03, 0.01, 0.003})
         {
             const point3 y = x + step*dir;
-            std::vector<double> b = at(y);
-            if (better(b, current))
+            std::vector<double> b = at(y, rejectionBound(current));
+            if (!b.empty() && better(b, current))
             {
                 x = y;
                 current = b;
