@@ -133,32 +133,18 @@ void pmsh::qualityPass::passMesh::forgetQuietNearChanges()
 }
 
 
-double pmsh::qualityPass::passMesh::faceBadness(label t, int k) const
+double pmsh::qualityPass::passMesh::faceBadness(label t, int k, measure* worst) const
 {
     const label u = across_[4*t + k];
     if (u >= 0 && u < t) return -1;
-    return badnessOf(tets_[t], k, u, [&](label q) -> const point3& { return points_[q]; });
-}
-
-
-pmsh::faceQuality pmsh::qualityPass::passMesh::worstFaces() const
-{
-    double tan2 = 0, skew = 0;
-    for (label t = 0; t < label(tets_.size()); ++t)
+    const measure m = measureOf(tets_[t], k, u, [&](label q) -> const point3& { return points_[q]; });
+    const bool nonOrthCounts = nonOrthogonalityCounts(u);
+    if (worst)
     {
-        for (int k = 0; k < 4; ++k)
-        {
-            const label u = across_[4*t + k];
-            if (u >= 0 && u < t) continue;
-            const measure m = measureOf
-            (
-                tets_[t], k, u, [&](label q) -> const point3& { return points_[q]; }
-            );
-            if (nonOrthogonalityCounts(u)) tan2 = std::max(tan2, m.tan2);
-            skew = std::max(skew, m.skew);
-        }
+        if (nonOrthCounts) worst->tan2 = std::max(worst->tan2, m.tan2);
+        worst->skew = std::max(worst->skew, m.skew);
     }
-    return {degrees(tan2), skew};
+    return badness(m, nonOrthCounts);
 }
 
 

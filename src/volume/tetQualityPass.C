@@ -13,12 +13,14 @@ using namespace pmsh;
 //- The tets one step visits, worst first: the slivers worse than
 //  `sliverBadness`, and the tets on both sides of the faces worse than
 //  `faceBadness`. Tets that were quiet at the last scan, and still are,
-//  are not measured again.
+//  are not measured again. With `worst`, the worst measures of the faces
+//  measured go there too.
 std::vector<std::pair<double, label>> tetsToVisit
 (
     qualityPass::passMesh& m,
     const double sliverBadness,
-    const double faceBadness
+    const double faceBadness,
+    qualityPass::measure* worst
 )
 {
     std::vector<std::pair<double, label>> visit;
@@ -32,7 +34,7 @@ std::vector<std::pair<double, label>> tetsToVisit
         }
         for (int k = 0; k < 4; ++k)
         {
-            const double b = m.faceBadness(t, k);
+            const double b = m.faceBadness(t, k, worst);
             if (b > faceBadness)
             {
                 visit.push_back({b, t});
@@ -48,8 +50,8 @@ std::vector<std::pair<double, label>> tetsToVisit
 
 //- Up to `steps` steps, each visiting tetsToVisit(m, sliverBadness,
 //  faceBadness); stops early when there is nothing left to visit. The
-//  worst faces before are measured if measureWorst (a scan of every
-//  face).
+//  worst faces before are measured if measureWorst, by the first scan
+//  (which measures every face).
 qualityPassStats runSteps
 (
     qualityPass::passMesh& m,
@@ -61,11 +63,15 @@ qualityPassStats runSteps
 {
     qualityPassStats stats;
     m.rebuild();
-    if (measureWorst) stats.worstBefore = m.worstFaces();
-    for (int step = 0; step < steps; ++step)
+    qualityPass::measure worst{0, 0};
+    std::vector<std::pair<double, label>> visit =
+        tetsToVisit(m, sliverBadness, faceBadness, measureWorst ? &worst : nullptr);
+    if (measureWorst)
     {
-        const std::vector<std::pair<double, label>> visit = tetsToVisit(m, sliverBadness, faceBadness);
-        if (visit.empty()) break;
+        stats.worstBefore = {qualityPass::degrees(worst.tan2), worst.skew};
+    }
+    for (int step = 0; step < steps && !visit.empty(); ++step)
+    {
         const label changesBefore = m.nFlips + m.nMoved;
         for (const auto& v : visit)
         {
@@ -74,6 +80,10 @@ qualityPassStats runSteps
         m.rebuild();
         // A step that changed nothing would be repeated exactly
         if (m.nFlips + m.nMoved == changesBefore) break;
+        if (step + 1 < steps)
+        {
+            visit = tetsToVisit(m, sliverBadness, faceBadness, nullptr);
+        }
     }
     stats.nVisited = m.nVisited;
     stats.nMoved = m.nMoved;
