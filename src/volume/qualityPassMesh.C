@@ -113,21 +113,10 @@ void pmsh::qualityPass::passMesh::rebuild()
 void pmsh::qualityPass::passMesh::forgetQuietNearChanges()
 {
     changed_.resize(points_.size(), 1);
-    const auto touched = [&](label t)
-    {
-        const tetVerts& c = tets_[t];
-        return changed_[c[0]] || changed_[c[1]] || changed_[c[2]] || changed_[c[3]];
-    };
+    const auto changed = [&](label p) { return changed_[p] != 0; };
     for (label t = 0; t < label(tets_.size()); ++t)
     {
-        if (!quiet_[t]) continue;
-        bool reads = touched(t);
-        for (int k = 0; k < 4 && !reads; ++k)
-        {
-            const label u = across_[4*t + k];
-            reads = u >= 0 && touched(u);
-        }
-        if (reads) quiet_[t] = 0;
+        if (quiet_[t] && anyPointRead(t, changed)) quiet_[t] = 0;
     }
     changed_.assign(points_.size(), 0);
 }
@@ -257,45 +246,12 @@ void pmsh::qualityPass::passMesh::replace(const std::vector<label>& old, const s
 
 bool pmsh::qualityPass::passMesh::movedSince(const std::vector<label>& star, label since) const
 {
+    const auto movedLater = [&](label p) { return movedAt_[p] > since; };
     for (label t : star)
     {
-        for (label p : tets_[t])
-        {
-            if (movedAt_[p] > since) return true;
-        }
-        for (int k = 0; k < 4; ++k)
-        {
-            const label u = across_[4*t + k];
-            if (u < 0) continue;
-            for (label p : tets_[u])
-            {
-                if (movedAt_[p] > since) return true;
-            }
-        }
+        if (anyPointRead(t, movedLater)) return true;
     }
     return false;
-}
-
-
-bool pmsh::qualityPass::passMesh::current(label t) const
-{
-    for (label p : tets_[t])
-    {
-        if (locked_[p]) return false;
-    }
-    for (int k = 0; k < 4; ++k)
-    {
-        const label u = across_[4*t + k];
-        if (u >= 0)
-        {
-            if (tets_[u][0] < 0) return false;     // deleted: its points are locked
-            for (label p : tets_[u])
-            {
-                if (locked_[p]) return false;
-            }
-        }
-    }
-    return true;
 }
 
 
