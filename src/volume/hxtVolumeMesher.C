@@ -1,403 +1,18 @@
 /*---------------------------------------------------------------------------*\
-  pmshFoam: Gmsh HXT volume mesher. Every Gmsh quirk met is noted where it
-  is handled.
+  pmshFoam: Gmsh HXT volume mesher. What both ways into HXT share (the
+  shells and volumes of a partition's surface, the interior size) and the
+  choice between them (hxtBackends.H); then the quality pass.
 \*---------------------------------------------------------------------------*/
 
 #include "hxtVolumeMesher.H"
+#include "hxtBackends.H"
 #include "pmshError.H"
 #include "tetQualityPass.H"
 #include "surfaceTopology.H"
 #include "meshingStep.H"
 
-#include <gmsh.h>
-
-#include <malloc.h>
-
 #include <algorithm>
-#include <cstring>
-#include <iomanip>
-#include <mutex>
-#include <numeric>
-#include <sstream>
 #include <string>
-
-namespace
-{
-
-using namespace pmsh;
-
-// Gmsh keeps one global model and option set per process: initialise once
-// and serialise all use (pmshFoam meshes one partition per rank at a time;
-// the lock documents the constraint for anyone calling from threads).
-std::mutex gmshMutex;
-
-void initialiseGmsh()
-{
-    static std::once_flag once;
-    std::call_once(once, []
-    {
-        // readConfigFiles = false: no ~/.gmshrc may change the meshing
-        gmsh::initialize(0, nullptr, false);
-        gmsh::option::setNumber("General.Terminal", 0);
-    });
-}
-
-
-// Gmsh 4.8's API reports errors by throwing a std::string (not a
-// std::exception); its log holds the detail.
-[[noreturn]] void gmshFailed(const std::string& error, const std::string& what)
-{
-    std::vector<std::string> log;
-    gmsh::logger::get(log);
-    gmsh::logger::stop();
-    msg m;
-    m   << "Gmsh HXT could not mesh the volume of " << what << ": " << error;
-    std::size_t shown = 0;
-    for (auto it = log.rbegin(); it != log.rend() && shown < 5; ++it)
-    {
-        if (it->rfind("Error", 0) == 0 || it->rfind("Warning", 0) == 0)
-        {
-            m   << "\n    Gmsh: " << *it;
-            ++shown;
-        }
-    }
-    throw FatalError(m, "pmsh::hxtVolumeMesher::mesh");
-}
-
-
-//- The background field: the cap (field capField) and, where regions
-//  are given, the minimum of it and a field per region that is the
-//  region's size inside it (Gmsh's Box, Ball and Cylinder fields) and
-//  the cap outside.
-int regionSizeFields
-(
-    const std::vector<sizeRegion>& regions,
-    double cap,
-    int capField
-)
-{
-    namespace field = gmsh::model::mesh::field;
-    std::vector<double> fields{double(capField)};
-    for (const sizeRegion& r : regions)
-    {
-        if (!(r.size < cap))
-        {
-            continue;
-        }
-        int f = 0;
-        switch (r.type)
-        {
-            case sizeRegion::shape::box:
-                f = field::add("Box");
-                field::setNumber(f, "XMin", r.min[0]);
-                field::setNumber(f, "YMin", r.min[1]);
-                field::setNumber(f, "ZMin", r.min[2]);
-                field::setNumber(f, "XMax", r.max[0]);
-                field::setNumber(f, "YMax", r.max[1]);
-                field::setNumber(f, "ZMax", r.max[2]);
-                break;
-            case sizeRegion::shape::sphere:
-                f = field::add("Ball");
-                field::setNumber(f, "XCenter", r.centre[0]);
-                field::setNumber(f, "YCenter", r.centre[1]);
-                field::setNumber(f, "ZCenter", r.centre[2]);
-                field::setNumber(f, "Radius", r.radius);
-                break;
-            case sizeRegion::shape::cylinder:
-            {
-                // Gmsh's cylinder is Center +- Axis: the half axis from
-                // the midpoint
-                const point3 mid = midPoint(r.point1, r.point2);
-                const vector3 half = 0.5*(r.point2 - r.point1);
-                f = field::add("Cylinder");
-                field::setNumber(f, "XCenter", mid[0]);
-                field::setNumber(f, "YCenter", mid[1]);
-                field::setNumber(f, "ZCenter", mid[2]);
-                field::setNumber(f, "XAxis", half[0]);
-                field::setNumber(f, "YAxis", half[1]);
-                field::setNumber(f, "ZAxis", half[2]);
-                field::setNumber(f, "Radius", r.radius);
-                break;
-            }
-        }
-        field::setNumber(f, "VIn", r.size);
-        field::setNumber(f, "VOut", cap);
-        fields.push_back(f);
-    }
-    if (fields.size() == 1)
-    {
-        return capField;
-    }
-    const int smallest = field::add("Min");
-    field::setNumbers(smallest, "FieldsList", fields);
-    return smallest;
-}
-
-
-//- Gmsh's model of one partition's volume, built and read back in named
-//  steps. Quirk: Gmsh 4.8 orders something by address (hxtVolumeMesher.H),
-//  so its mesh depends on the heap's history: every container lives as
-//  long as the model, declared in the order the steps fill it, so that the
-//  steps allocate and free as one function would.
-class hxtModel
-{
-    const std::vector<point3>& surfacePoints_;
-    const std::vector<triVerts>& surfaceTriangles_;
-    const std::size_t nSurface_;
-
-    //- Shell of each surface triangle, and the triangles of each shell
-    std::vector<label> shellOf_;
-    std::vector<std::vector<label>> shells_;
-    //- Gmsh's discrete surface of each shell
-    std::vector<int> shellSurface_;
-    std::vector<std::size_t> tagOfPoint_;
-    //- The outer shells, their sizes, and the surface loops of each volume
-    std::vector<std::size_t> outers_;
-    std::vector<double> outerSize_;
-    std::vector<std::vector<int>> loops_;
-    //- The interior size cap, as Gmsh's MathEval field reads it
-    std::ostringstream cap_;
-    //- Gmsh's nodes, and the index in the mesh of each node tag
-    std::vector<std::size_t> nodeTags_;
-    std::vector<double> coords_, parametric_;
-    std::vector<std::size_t> newTags_;
-    std::vector<label> index_;
-    std::vector<std::size_t> noElementTags_, elementNodes_;
-
-public:
-
-    hxtModel
-    (
-        const std::vector<point3>& surfacePoints,
-        const std::vector<triVerts>& surfaceTriangles
-    )
-    :
-        surfacePoints_(surfacePoints),
-        surfaceTriangles_(surfaceTriangles),
-        nSurface_(surfacePoints.size())
-    {}
-
-    //- One discrete surface per closed shell (its triangles in shells_): a
-    //  single surface loop around a surface of several shells_ (a partition
-    //  around the body of a body-in-box domain) makes HXT fail. Node tags, not
-    //  coordinates, map Gmsh's nodes back to ours: surface point
-    //  surfacePointOfTag[tag - 1]. Quirk: Gmsh renumbers the nodes unless their
-    //  tags run 1..n without gaps, so each shell's points get the next tags in
-    //  turn.
-    void addShellSurfaces(std::vector<label>& surfacePointOfTag)
-    {
-        label nShells = 0;
-        shellOf_ = surfaceShells(label(nSurface_), surfaceTriangles_, nShells);
-        shells_.resize(nShells);
-        for (std::size_t t = 0; t < surfaceTriangles_.size(); ++t)
-        {
-            shells_[shellOf_[t]].push_back(label(t));
-        }
-        shellSurface_.resize(shells_.size());
-        tagOfPoint_.assign(nSurface_, 0);
-        surfacePointOfTag.reserve(nSurface_);
-        for (std::size_t s = 0; s < shells_.size(); ++s)
-        {
-            shellSurface_[s] = gmsh::model::addDiscreteEntity(2);
-            std::vector<std::size_t> tags;
-            std::vector<double> xyz;
-            std::vector<std::size_t> triangleNodes;
-            triangleNodes.reserve(3*shells_[s].size());
-            for (label i : shells_[s])
-            {
-                for (label p : surfaceTriangles_[i])
-                {
-                    if (tagOfPoint_[p] == 0)
-                    {
-                        surfacePointOfTag.push_back(p);
-                        tagOfPoint_[p] = surfacePointOfTag.size();
-                        tags.push_back(tagOfPoint_[p]);
-                        xyz.insert(xyz.end(), surfacePoints_[p].begin(), surfacePoints_[p].end());
-                    }
-                    triangleNodes.push_back(tagOfPoint_[p]);
-                }
-            }
-            gmsh::model::mesh::addNodes(2, shellSurface_[s], tags, xyz);
-            gmsh::model::mesh::addElementsByType(shellSurface_[s], 2, {}, triangleNodes);
-        }
-    }
-
-    //- One volume per outer shell with its holes. Quirk: HXT leaves a
-    //  discrete volume (addDiscreteEntity(3)) empty ("No elements in volume");
-    //  a built-in-kernel volume bounded by surface loops_ on the discrete
-    //  surfaces is meshed (the first loop its outside, the others its holes),
-    //  and the surface mesh is kept as it is. A shell is a hole where the
-    //  volume lies outside it (its normals point into it: winding number -1 at
-    //  points inside); it belongs to the smallest outer shell around it.
-    void addVolumes()
-    {
-        for (std::size_t s = 0; s < shells_.size(); ++s)
-        {
-            double volume6 = 0;
-            for (label i : shells_[s])
-            {
-                const triVerts& t = surfaceTriangles_[i];
-                volume6 += dot(surfacePoints_[t[0]], cross(surfacePoints_[t[1]], surfacePoints_[t[2]]));
-            }
-            if (volume6 > 0)
-            {
-                outers_.push_back(s);
-                outerSize_.push_back(volume6);
-            }
-        }
-        loops_.resize(outers_.size());
-        for (std::size_t o = 0; o < outers_.size(); ++o)
-        {
-            loops_[o].push_back(gmsh::model::geo::addSurfaceLoop({shellSurface_[outers_[o]]}));
-        }
-        for (std::size_t s = 0; s < shells_.size(); ++s)
-        {
-            const bool outer = std::find(outers_.begin(), outers_.end(), s) != outers_.end();
-            if (outer || outers_.empty()) continue;
-            const point3& p = surfacePoints_[surfaceTriangles_[shells_[s][0]][0]];
-            std::size_t owner = outers_.size();
-            for (std::size_t o = 0; o < outers_.size(); ++o)
-            {
-                const bool around =
-                    outers_.size() == 1
-                 || windingNumber(surfacePoints_, surfaceTriangles_, shells_[outers_[o]], p) > 0.5;
-                if (around && (owner == outers_.size() || outerSize_[o] < outerSize_[owner]))
-                {
-                    owner = o;
-                }
-            }
-            loops_[owner == outers_.size() ? 0 : owner].push_back
-            (
-                gmsh::model::geo::addSurfaceLoop({shellSurface_[s]})
-            );
-        }
-        for (const std::vector<int>& volumeLoops : loops_)
-        {
-            gmsh::model::geo::addVolume(volumeLoops);
-        }
-        gmsh::model::geo::synchronize();
-    }
-
-    //- HXT, its threads, the size field and Gmsh's optimiser.
-    void setMeshingOptions(const volumeMeshParameters& parameters)
-    {
-        gmsh::option::setNumber("Mesh.Algorithm3D", 10);       // HXT
-        // Quirk: with more than one thread, Debian's Gmsh 4.8.4 HXT now and
-        // then returns a duplicated interior node (faces matching nothing);
-        // VolumeMesher::mesh catches it and meshVolumeWithFallbacks retries
-        // with one thread
-        gmsh::option::setNumber("General.NumThreads", parameters.threads);
-        // Interior size grows from the surface edge lengths, as Netgen's,
-        // capped at the fine size (Netgen's maxh) by a constant background
-        // field. Partition interfaces are refined coarse interior faces,
-        // whose edges are up to 3x the fine size: without the cap_, cells
-        // near them would be coarser than in a serial run of the same case.
-        // (The cap_ at 1.2x the fine size, which matches Netgen's serial cell
-        // count better, gave 25-35% fewer cells on 2-4 ranks than on one;
-        // at 1x the count varies by under 10% with the number of ranks.)
-        // Quirk: the same cap_ as Mesh.MeshSizeMax makes Gmsh 4.8.4 crash
-        // (SIGSEGV in hxtRefineTetrahedra) whenever it lies below the longer
-        // surface edges, which partition interfaces always have; the field
-        // gives the same sizes without the crash.
-        gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
-        const int sizeField = gmsh::model::mesh::field::add("MathEval");
-        cap_ << std::setprecision(17) << parameters.maxCellSize;
-        gmsh::model::mesh::field::setString(sizeField, "F", cap_.str());
-        gmsh::model::mesh::field::setAsBackgroundMesh
-        (
-            regionSizeFields(parameters.regions, parameters.maxCellSize, sizeField)
-        );
-        // Gmsh's own tet optimiser costs next to nothing and takes the
-        // worst faces from about 80 to 65 degrees; the quality pass below
-        // does the rest (bench/results/quality.md)
-        gmsh::option::setNumber("Mesh.Optimize", parameters.optimisationSteps > 0);
-        gmsh::option::setNumber("Mesh.OptimizeThreshold", 0.3);
-    }
-
-    //- The nodes of Gmsh's mesh into result.points: the surface points
-    //  first, where Gmsh put them, then the new nodes in tag order; index_
-    //  holds the point of each node tag (-1: none).
-    void readNodes
-    (
-        const std::vector<label>& surfacePointOfTag,
-        TetMesh& result
-    )
-    {
-        gmsh::model::mesh::getNodes(nodeTags_, coords_, parametric_, -1, -1, false, false);
-
-        // Tags 1..nSurface are the surface points (where Gmsh put them:
-        // whether they are still where they went in is VolumeMesher::mesh's
-        // to check); new nodes follow in tag order
-        result.points = surfacePoints_;
-        for (std::size_t k = 0; k < nodeTags_.size(); ++k)
-        {
-            if (nodeTags_[k] <= nSurface_)
-            {
-                result.points[surfacePointOfTag[nodeTags_[k] - 1]] =
-                    {coords_[3*k], coords_[3*k + 1], coords_[3*k + 2]};
-            }
-            else
-            {
-                newTags_.push_back(k);
-            }
-        }
-        std::sort
-        (
-            newTags_.begin(), newTags_.end(),
-            [&](std::size_t a, std::size_t b) { return nodeTags_[a] < nodeTags_[b]; }
-        );
-        std::size_t maxTag = nSurface_;
-        for (std::size_t k : newTags_) maxTag = std::max(maxTag, nodeTags_[k]);
-        index_.assign(maxTag + 1, -1);
-        for (std::size_t i = 0; i < nSurface_; ++i) index_[i + 1] = surfacePointOfTag[i];
-
-        result.points.reserve(nSurface_ + newTags_.size());
-        for (std::size_t k : newTags_)
-        {
-            index_[nodeTags_[k]] = label(result.points.size());
-            result.points.push_back({coords_[3*k], coords_[3*k + 1], coords_[3*k + 2]});
-        }
-    }
-
-    //- The tets of Gmsh's mesh into result.tets, positive, through the node
-    //  index_ of readNodes; frees Gmsh's model.
-    void readTets(TetMesh& result)
-    {
-        // The peak memory of a large partition is Gmsh's model plus what is
-        // copied out of it: only the tets' node tags are asked for (no
-        // element tags), and the model is freed, its pages handed back,
-        // before the tets are built from them (24 bytes per cell less)
-        gmsh::model::mesh::preallocateElementsByType
-        (
-            4, false, true, noElementTags_, elementNodes_
-        );
-        gmsh::model::mesh::getElementsByType(4, noElementTags_, elementNodes_);
-        gmsh::model::remove();
-        ::malloc_trim(0);
-
-        result.tets.resize(elementNodes_.size()/4);
-        for (std::size_t e = 0; e < result.tets.size(); ++e)
-        {
-            tetVerts& t = result.tets[e];
-            for (int k = 0; k < 4; ++k)
-            {
-                const std::size_t tag = elementNodes_[4*e + k];
-                if (tag >= index_.size() || index_[tag] < 0)
-                {
-                    throw std::string("a tet refers to an unknown node");
-                }
-                t[k] = index_[tag];
-            }
-            const auto& P = result.points;
-            if (tetVolume6(P[t[0]], P[t[1]], P[t[2]], P[t[3]]) < 0)
-            {
-                std::swap(t[2], t[3]);
-            }
-        }
-    }
-};
-
-} // End anonymous namespace
 
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * //
@@ -409,7 +24,90 @@ namespace pmsh
 }
 
 
+// * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * //
+
+pmsh::shellVolumes pmsh::findShellVolumes
+(
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles
+)
+{
+    shellVolumes result;
+    label nShells = 0;
+    result.shellOf = surfaceShells(label(points.size()), triangles, nShells);
+    result.shells.resize(nShells);
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+    {
+        result.shells[result.shellOf[t]].push_back(label(t));
+    }
+
+    // Outer shells enclose a positive volume (outward normals)
+    std::vector<label> outers;
+    std::vector<double> outerSize;
+    for (std::size_t s = 0; s < result.shells.size(); ++s)
+    {
+        double volume6 = 0;
+        for (label i : result.shells[s])
+        {
+            const triVerts& t = triangles[i];
+            volume6 += dot(points[t[0]], cross(points[t[1]], points[t[2]]));
+        }
+        if (volume6 > 0)
+        {
+            outers.push_back(label(s));
+            outerSize.push_back(volume6);
+        }
+    }
+    for (label o : outers)
+    {
+        result.volumes.push_back({o});
+    }
+    if (outers.empty())
+    {
+        return result;
+    }
+    for (std::size_t s = 0; s < result.shells.size(); ++s)
+    {
+        if (std::find(outers.begin(), outers.end(), label(s)) != outers.end()) continue;
+        const point3& p = points[triangles[result.shells[s][0]][0]];
+        std::size_t owner = outers.size();
+        for (std::size_t o = 0; o < outers.size(); ++o)
+        {
+            const bool around =
+                outers.size() == 1
+             || windingNumber(points, triangles, result.shells[outers[o]], p) > 0.5;
+            if (around && (owner == outers.size() || outerSize[o] < outerSize[owner]))
+            {
+                owner = o;
+            }
+        }
+        result.volumes[owner == outers.size() ? 0 : owner].push_back(label(s));
+    }
+    return result;
+}
+
+
+double pmsh::hxtInteriorSize(const volumeMeshParameters& parameters, const point3& x)
+{
+    double size = parameters.maxCellSize;
+    for (const sizeRegion& r : parameters.regions)
+    {
+        if (r.size < size && r.contains(x))
+        {
+            size = r.size;
+        }
+    }
+    return size;
+}
+
+
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
+
+bool pmsh::hxtVolumeMesher::dependsOnTheHeap() const
+{
+    return !hxtLibraryAvailable();
+}
+
 
 pmsh::TetMesh pmsh::hxtVolumeMesher::generate
 (
@@ -418,50 +116,27 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
     const volumeMeshParameters& parameters
 ) const
 {
-    const std::string& what = parameters.what;
-    std::lock_guard<std::mutex> lock(gmshMutex);
-    initialiseGmsh();
-
-    const std::size_t nSurface = surfacePoints.size();
-    TetMesh result;
-    std::vector<label> surfacePointOfTag;
-    try
+    const shellVolumes volumes = findShellVolumes(surfacePoints, surfaceTriangles);
+    if (volumes.volumes.empty())
     {
-        gmsh::logger::start();
-        gmsh::model::add("pmshFoamPartition");
-        hxtModel model(surfacePoints, surfaceTriangles);
-        model.addShellSurfaces(surfacePointOfTag);
-        model.addVolumes();
-        model.setMeshingOptions(parameters);
-
-        reportMeshingStep
+        throw FatalError
         (
-            parameters.optimisationSteps > 0
-          ? "Gmsh HXT: tetrahedra, then Gmsh's optimiser"
-          : "Gmsh HXT: tetrahedra"
+            msg() << "Gmsh HXT could not mesh the volume of " << parameters.what
+                << ": none of its " << volumes.shells.size() << " closed shells"
+                " encloses a positive volume (are its triangles wound inwards?)",
+            "pmsh::hxtVolumeMesher::generate"
         );
-        gmsh::model::mesh::generate(3);
-        reportMeshingStep("Gmsh HXT: reading the mesh back");
+    }
 
-        model.readNodes(surfacePointOfTag, result);
-        model.readTets(result);
-
-        gmsh::logger::stop();
-    }
-    catch (const std::string& error)
-    {
-        gmsh::model::remove();
-        gmshFailed(error, what);
-    }
-    catch (const std::exception& error)
-    {
-        gmsh::model::remove();
-        gmshFailed(error.what(), what);
-    }
+    TetMesh result =
+        hxtLibraryAvailable()
+      ? hxtLibraryMesh(surfacePoints, surfaceTriangles, volumes, parameters)
+      : gmshModelMesh(surfacePoints, surfaceTriangles, volumes, parameters);
 
     // HXT's worst cells are far worse than Netgen's: improve them, with
     // the partition's surface fixed; with no steps, remove only the slivers
     // that checkMesh (and the contract) would refuse
+    const label nSurface = label(surfacePoints.size());
     if (parameters.optimisationSteps > 0)
     {
         reportMeshingStep
@@ -471,14 +146,14 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         );
         improveWorstCells
         (
-            result, label(nSurface), surfaceTriangles,
+            result, nSurface, surfaceTriangles,
             parameters.interfaceTriangles, parameters.optimisationSteps
         );
     }
     else
     {
         reportMeshingStep("sliver removal on " + std::to_string(result.tets.size()) + " cells");
-        removeSlivers(result, label(nSurface), surfaceTriangles, parameters.interfaceTriangles);
+        removeSlivers(result, nSurface, surfaceTriangles, parameters.interfaceTriangles);
     }
 
     return result;

@@ -4,6 +4,7 @@
 
 #include "testPaths.H"
 #include "VolumeMesher.H"
+#include "hxtBackends.H"
 #include "Geometry.H"
 #include "netgenInterface.H"
 #include "partitionCoarseMesh.H"
@@ -15,6 +16,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <map>
 #include <set>
@@ -424,3 +426,163 @@ TEST(hxtVolumeMesher, surfacesOfSeveralShellsWithHolesAndApartParts)
     EXPECT_NEAR(volume6, enclosed6(s), 1e-9*ball6);
     EXPECT_NEAR(volume6, 2*(ball6 - hole6), 1e-9*ball6);
 }
+
+
+namespace
+{
+
+//- An icosphere of radius 1 with a hole of radius 0.4 (the body of a
+//  body-in-box partition): the shells, the volume it encloses (x 6)
+closedSurface ballWithAHole(double& enclosed6)
+{
+    closedSurface s = icosphere(3);
+    const closedSurface hole = icosphere(2);
+    const label offset = label(s.points.size());
+    for (const point3& p : hole.points) s.points.push_back(0.4*p);
+    for (triVerts t : hole.triangles)
+    {
+        s.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
+    }
+    enclosed6 = 0;
+    for (const triVerts& t : s.triangles)
+    {
+        enclosed6 += dot(s.points[t[0]], cross(s.points[t[1]], s.points[t[2]]));
+    }
+    return s;
+}
+
+
+//- What both ways into HXT must give before the quality pass: the surface
+//  points kept, positive tets, every surface triangle the face of a tet,
+//  and the tets' volumes adding up to the enclosed volume (no tet in the
+//  hole, none outside)
+void expectTheSurfaceFilled(const closedSurface& s, double enclosed6, const TetMesh& m)
+{
+    ASSERT_GT(m.points.size(), s.points.size());
+    for (std::size_t i = 0; i < s.points.size(); ++i)
+    {
+        ASSERT_EQ(m.points[i], s.points[i]) << "surface point " << i;
+    }
+    double volume6 = 0;
+    std::set<std::array<label, 3>> faces;
+    for (const tetVerts& t : m.tets)
+    {
+        const double v = tetVolume6(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
+        ASSERT_GT(v, 0);
+        volume6 += v;
+        for (int f = 0; f < 4; ++f)
+        {
+            triVerts tri = tetFace(t, f);
+            std::sort(tri.begin(), tri.end());
+            faces.insert(tri);
+        }
+    }
+    EXPECT_NEAR(volume6, enclosed6, 1e-9*enclosed6);
+    for (triVerts t : s.triangles)
+    {
+        std::sort(t.begin(), t.end());
+        EXPECT_TRUE(faces.count(t)) << "a surface triangle is no tet's face";
+    }
+}
+
+
+//- Mean cell volume inside and outside a ball
+std::pair<double, double> meanVolumeInAndOut(const TetMesh& m, const point3& centre, double radius)
+{
+    double in = 0, out = 0;
+    std::size_t nIn = 0, nOut = 0;
+    for (const tetVerts& t : m.tets)
+    {
+        const point3 c = 0.25*(m.points[t[0]] + m.points[t[1]] + m.points[t[2]] + m.points[t[3]]);
+        const double v = tetVolume6(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
+        if (magSqr(c - centre) < radius*radius) { in += v; ++nIn; } else { out += v; ++nOut; }
+    }
+    return {in/std::max<std::size_t>(nIn, 1), out/std::max<std::size_t>(nOut, 1)};
+}
+
+} // End anonymous namespace
+
+
+TEST(hxtVolumeMesher, bothWaysIntoHxtFillABallAroundAHoleAlike)
+{
+    double enclosed6 = 0;
+    const closedSurface s = ballWithAHole(enclosed6);
+    const shellVolumes v = findShellVolumes(s.points, s.triangles);
+    ASSERT_EQ(v.volumes.size(), 1u);
+    ASSERT_EQ(v.volumes[0].size(), 2u) << "the outer shell and its hole";
+    volumeMeshParameters p;
+    p.maxCellSize = 0.1;
+
+    const TetMesh viaGmsh = gmshModelMesh(s.points, s.triangles, v, p);
+    expectTheSurfaceFilled(s, enclosed6, viaGmsh);
+    if (!hxtLibraryAvailable())
+    {
+        GTEST_SKIP() << "Gmsh " << gmshVersion() << " is not 4.8: HXT is reached through Gmsh's model only";
+    }
+    const TetMesh direct = hxtLibraryMesh(s.points, s.triangles, v, p);
+    expectTheSurfaceFilled(s, enclosed6, direct);
+    // The same algorithm and sizes, another insertion order
+    const double ratio = double(direct.tets.size())/double(viaGmsh.tets.size());
+    EXPECT_GT(ratio, 0.9) << direct.tets.size() << " against " << viaGmsh.tets.size();
+    EXPECT_LT(ratio, 1.1) << direct.tets.size() << " against " << viaGmsh.tets.size();
+}
+
+
+TEST(hxtVolumeMesher, bothWaysIntoHxtRefineInsideARefinementRegion)
+{
+    const closedSurface s = icosphere(3);
+    const shellVolumes v = findShellVolumes(s.points, s.triangles);
+    volumeMeshParameters p;
+    p.maxCellSize = 0.15;
+    sizeRegion ball;
+    ball.type = sizeRegion::shape::sphere;
+    ball.centre = {0.2, 0, 0};
+    ball.radius = 0.4;
+    ball.size = 0.04;
+    p.regions = {ball};
+    EXPECT_EQ(hxtInteriorSize(p, {0.2, 0.1, 0}), 0.04);
+    EXPECT_EQ(hxtInteriorSize(p, {-0.5, 0, 0}), 0.15);
+
+    std::vector<TetMesh> meshes{gmshModelMesh(s.points, s.triangles, v, p)};
+    if (hxtLibraryAvailable())
+    {
+        meshes.push_back(hxtLibraryMesh(s.points, s.triangles, v, p));
+    }
+    for (const TetMesh& m : meshes)
+    {
+        // (0.15/0.04)^3 = 53 times smaller cells where the region is
+        const auto [in, out] = meanVolumeInAndOut(m, ball.centre, 0.8*ball.radius);
+        EXPECT_LT(in, out/10) << "in " << in << ", out " << out;
+    }
+}
+
+
+TEST(hxtVolumeMesher, calledDirectlyHxtMeshesTheSameSurfaceTheSameWayWhateverTheHeap)
+{
+    // Through Gmsh's model, Gmsh 4.8 orders the nodes by address, so a
+    // forked rank would mesh differently from run to run: that is why such
+    // meshers run in a fresh process. Called directly, HXT must not need it.
+    if (!hxtLibraryAvailable())
+    {
+        EXPECT_TRUE(VolumeMesher::New("hxt")->dependsOnTheHeap());
+        GTEST_SKIP() << "Gmsh " << gmshVersion() << " is not 4.8: HXT is reached through Gmsh's model only";
+    }
+    EXPECT_FALSE(VolumeMesher::New("hxt")->dependsOnTheHeap());
+    const closedSurface s = icosphere(3);
+    const shellVolumes v = findShellVolumes(s.points, s.triangles);
+    volumeMeshParameters p;
+    p.maxCellSize = 0.08;
+    const TetMesh first = hxtLibraryMesh(s.points, s.triangles, v, p);
+    // The heap used otherwise in between: blocks of many sizes, every
+    // other one kept
+    std::vector<std::vector<double>> kept;
+    for (std::size_t n = 1; n < 3000; n += 7)
+    {
+        std::vector<double> block(n, 1.0);
+        if (n % 2) kept.push_back(std::move(block));
+    }
+    const TetMesh second = hxtLibraryMesh(s.points, s.triangles, v, p);
+    EXPECT_EQ(first.points, second.points);
+    EXPECT_EQ(first.tets, second.tets);
+}
+
