@@ -673,7 +673,8 @@ meshSettings readMeshSettings
     s.coarseMesher = choice(dict, "coarseMesher", s.volumeMesher, VolumeMesher::names());
     s.optimisationSteps = bounded
     (
-        dict, "optimisationSteps", 3, 0, 100, true,
+        dict, "optimisationSteps",
+        VolumeMesher::New(s.volumeMesher)->defaultOptimisationSteps(), 0, 100, true,
         "Valid values are integers 0 <= optimisationSteps <= 100"
     );
     s.volumeMesherThreads = bounded

@@ -263,7 +263,7 @@ public:
         // it costs little and takes the worst faces from about 80 to 65
         // degrees; the quality pass does the rest (bench/results/quality.md)
         gmsh::option::setNumber("Mesh.Optimize", parameters.optimisationSteps > 0);
-        gmsh::option::setNumber("Mesh.OptimizeThreshold", 0.3);
+        gmsh::option::setNumber("Mesh.OptimizeThreshold", hxtOptimiserThreshold);
     }
 
     //- The nodes of Gmsh's mesh into result.points: the surface points

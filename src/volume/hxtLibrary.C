@@ -402,13 +402,13 @@ pmsh::TetMesh pmsh::hxtLibraryMesh
 
     // As Gmsh 4.8 calls it (meshGRegionHxt.cpp): reproducible, refined
     // to the sizes, and HXT's own optimiser (Gmsh's Mesh.Optimize for HXT)
-    // on tets below quality 0.3 unless optimisationSteps is 0
+    // unless optimisationSteps is 0
     HXTTetMeshOptions options{};
     options.defaultThreads = std::max(parameters.threads, 1);
     options.reproducible = 1;
     options.refine = 1;
     options.optimize = parameters.optimisationSteps > 0;
-    options.quality.min = 0.3;
+    options.quality.min = hxtOptimiserThreshold;
     options.nodalSizes.callback = interiorSizes;
     options.nodalSizes.userData = const_cast<volumeMeshParameters*>(&parameters);
     options.nodalSizes.max = 1e22;

@@ -155,6 +155,11 @@ TEST_F(meshSettingsTest, optionalEntriesHaveTheirDefaults)
     EXPECT_EQ(read(minimal() + "volumeMesher hxt;\n").coarseMesher, "hxt");
     EXPECT_EQ(read(minimal() + "volumeMesher hxt;\ncoarseMesher netgen;\n").coarseMesher, "netgen");
     EXPECT_EQ(s.patchType("anything"), "wall");
+
+    // hxt's default is one step of the quality pass (HXT's own optimiser
+    // does more, hxtOptimiserThreshold); a value given is kept
+    EXPECT_EQ(read(minimal() + "volumeMesher hxt;\n").optimisationSteps, 1);
+    EXPECT_EQ(read(minimal() + "volumeMesher hxt;\noptimisationSteps 3;\n").optimisationSteps, 3);
 }
 
 TEST_F(meshSettingsTest, integersWrittenAsIntegersAreAcceptedForNumbers)
