@@ -357,7 +357,7 @@ std::int64_t assembleMovedMesh
             builder.addTet(t, m.across, m.zone);
             ++nReceived;
         }
-        fromRank = {};
+        freeStorage(fromRank);
     }
     mesh = std::move(builder.out);
     return nReceived;
@@ -422,7 +422,7 @@ pmsh::fineBalanceStats pmsh::balanceFineCells
         comm.size(), staying, stayingAcross
     );
     std::vector<std::vector<movedTet>> received = comm.exchange(send);
-    send = {};
+    freeStorage(send);
 
     const std::int64_t nReceived =
         assembleMovedMesh(mesh, staying, stayingAcross, received);

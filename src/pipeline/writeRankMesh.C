@@ -17,7 +17,7 @@ std::vector<label> cellZonesOf(rankTets& share, label nCells)
 {
     std::vector<label> zones = std::move(share.tetZone);
     zones.insert(zones.end(), share.prismZone.begin(), share.prismZone.end());
-    share.prismZone = {};
+    freeStorage(share.prismZone);
     if (!zones.empty() && label(zones.size()) != nCells)
     {
         throw FatalError
@@ -52,12 +52,12 @@ tetPolyMesh polyMeshOf
             share.globalIds,
             share.prisms, share.quads, share.quadRegion
         );
-        share.tets = {};
-        share.triangles = {};
-        share.region = {};
-        share.prisms = {};
-        share.quads = {};
-        share.quadRegion = {};
+        freeStorage(share.tets);
+        freeStorage(share.triangles);
+        freeStorage(share.region);
+        freeStorage(share.prisms);
+        freeStorage(share.quads);
+        freeStorage(share.quadRegion);
         mesh.zoneNames = coarse.zones;
         mesh.cellZone = cellZonesOf(share, mesh.nCells);
         mesh.zonePairs = zonePairs;
@@ -69,7 +69,7 @@ tetPolyMesh polyMeshOf
         {
             orderCyclicFaces(comm, mesh, share.pointIds, coarse);
         });
-        share.pointIds = {};
+        freeStorage(share.pointIds);
     }
     return mesh;
 }

@@ -21,7 +21,7 @@ Foam::labelList movedToLabelList(std::vector<pmsh::label>& labels)
 {
     Foam::labelList list(Foam::label(labels.size()));
     std::copy(labels.begin(), labels.end(), list.begin());
-    labels = {};
+    pmsh::freeStorage(labels);
     return list;
 }
 
@@ -38,7 +38,7 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
         const pmsh::point3& p = mesh.points[i];
         points[i] = Foam::vector(p[0], p[1], p[2]);
     }
-    mesh.points = {};
+    freeStorage(mesh.points);
 
     // Each face is a view of its labels in a block this object owns: the
     // tetPolyMesh's triangles, or with prism layers (quads) one flat block
@@ -78,8 +78,8 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
                 UList<label>(mixedFaces_.data() + start, label(at - start))
             );
         }
-        mesh.faces = {};
-        mesh.quads = {};
+        freeStorage(mesh.faces);
+        freeStorage(mesh.quads);
     }
 
     labelList owner = movedToLabelList(mesh.owner);
@@ -398,11 +398,11 @@ void pmsh::writeProcAddressing
 {
     // Each list is freed once written: they are not needed afterwards
     writeLabelIOList(time, "pointProcAddressing", addressing.point);
-    addressing.point = {};
+    freeStorage(addressing.point);
     writeLabelIOList(time, "faceProcAddressing", addressing.face);
-    addressing.face = {};
+    freeStorage(addressing.face);
     writeLabelIOList(time, "cellProcAddressing", addressing.cell);
-    addressing.cell = {};
+    freeStorage(addressing.cell);
     writeLabelIOList(time, "boundaryProcAddressing", addressing.boundary);
-    addressing.boundary = {};
+    freeStorage(addressing.boundary);
 }
