@@ -17,6 +17,7 @@
 #include <cstring>
 #include <deque>
 #include <mutex>
+#include <numeric>
 #include <string>
 
 #if GMSH_API_VERSION_MAJOR == 4 && GMSH_API_VERSION_MINOR == 8
@@ -244,26 +245,56 @@ public:
 }
 
 
-//- The surface: its points (the size left at 0: HXT takes each point's
-//  from its edges), its triangles coloured by shell (colour = shell + 1),
-//  and the volumes as the colours of their shells. Without volumes HXT
-//  would fill every closed region, the inside of holes too.
+//- The order in which HXT gets the surface points: HXT vertex i is surface
+//  point order[i], a shuffle of them (xorshift, fixed seed: the same
+//  surface gets the same mesh). Quirk: Gmsh 4.8.4's HXT can walk in
+//  circles while it inserts points (walking2Cavity has no bound; fixed in
+//  Gmsh 4.10), and whether it does depends on the vertex numbering, which
+//  breaks ties among the many cospherical points of a refined curved
+//  surface. A sphere partition of 55M cells walked in circles given its
+//  points in pmshFoam's order, and again shell by shell in order of first
+//  use; shuffled, it was meshed in 125 s (bench/results/massive.md).
+std::vector<label> insertionOrder(std::size_t nPoints)
+{
+    std::vector<label> order(nPoints);
+    std::iota(order.begin(), order.end(), label(0));
+    uint64_t x = 88172645463325252ull;
+    for (std::size_t i = nPoints; i > 1; --i)
+    {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        std::swap(order[i - 1], order[x % i]);
+    }
+    return order;
+}
+
+
+//- The surface in HXT's numbering (insertionOrder): its points (the size
+//  left at 0: HXT takes each point's from its edges), its triangles
+//  coloured by shell (colour = shell + 1), and the volumes as the colours
+//  of their shells. Without volumes HXT would fill every closed region,
+//  the inside of holes too.
 void setSurface
 (
     HXTMesh* m,
     const std::vector<point3>& points,
+    const std::vector<label>& order,
     const std::vector<triVerts>& triangles,
     const shellVolumes& volumes
 )
 {
+    std::vector<uint32_t> hxtIndex(points.size());
     m->vertices.coord = hxtArray<double>(4*points.size());
     m->vertices.num = m->vertices.size = uint32_t(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i)
+    for (std::size_t i = 0; i < order.size(); ++i)
     {
+        hxtIndex[order[i]] = uint32_t(i);
+        const point3& p = points[order[i]];
         double* x = m->vertices.coord + 4*i;
-        x[0] = points[i][0];
-        x[1] = points[i][1];
-        x[2] = points[i][2];
+        x[0] = p[0];
+        x[1] = p[1];
+        x[2] = p[2];
         x[3] = 0;
     }
 
@@ -274,7 +305,7 @@ void setSurface
     {
         for (int k = 0; k < 3; ++k)
         {
-            m->triangles.node[3*t + k] = uint32_t(triangles[t][k]);
+            m->triangles.node[3*t + k] = hxtIndex[triangles[t][k]];
         }
         m->triangles.color[t] = uint32_t(volumes.shellOf[t] + 1);
     }
@@ -314,8 +345,14 @@ hxtStatus interiorSizes(double* coord, uint32_t*, size_t n, void* data)
 
 //- The tets inside the volumes, positive, into a TetMesh: the surface
 //  points first, in their order (HXT keeps its input vertices where they
-//  were), then the points HXT added, in its order
-TetMesh readMesh(const HXTMesh* m, const std::vector<point3>& surfacePoints)
+//  were: HXT vertex i is surface point order[i]), then the points HXT
+//  added, in its order
+TetMesh readMesh
+(
+    const HXTMesh* m,
+    const std::vector<point3>& surfacePoints,
+    const std::vector<label>& order
+)
 {
     const std::size_t nSurface = surfacePoints.size();
     const uint32_t nVolumes = m->brep.numVolumes;
@@ -339,15 +376,16 @@ TetMesh readMesh(const HXTMesh* m, const std::vector<point3>& surfacePoints)
     for (std::size_t i = 0; i < nSurface; ++i)
     {
         const double* x = m->vertices.coord + 4*i;
-        if (x[0] != surfacePoints[i][0] || x[1] != surfacePoints[i][1] || x[2] != surfacePoints[i][2])
+        const point3& p = surfacePoints[order[i]];
+        if (x[0] != p[0] || x[1] != p[1] || x[2] != p[2])
         {
             throw FatalError
             (
-                msg() << "HXT moved or renumbered surface point " << i,
+                msg() << "HXT moved or renumbered surface point " << order[i],
                 "pmsh::hxtLibraryMesh"
             );
         }
-        index[i] = label(i);
+        index[i] = order[i];
     }
     std::size_t nNew = 0;
     for (std::size_t i = nSurface; i < index.size(); ++i) nNew += index[i] == 0;
@@ -398,7 +436,8 @@ pmsh::TetMesh pmsh::hxtLibraryMesh
     hxtSetMessageCallback(keepComplaints);
 
     hxtMesh mesh;
-    setSurface(mesh.get(), surfacePoints, surfaceTriangles, volumes);
+    const std::vector<label> order = insertionOrder(surfacePoints.size());
+    setSurface(mesh.get(), surfacePoints, order, surfaceTriangles, volumes);
 
     // As Gmsh 4.8 calls it (meshGRegionHxt.cpp): reproducible, refined
     // to the sizes, and HXT's own optimiser (Gmsh's Mesh.Optimize for HXT)
@@ -427,7 +466,7 @@ pmsh::TetMesh pmsh::hxtLibraryMesh
     }
 
     reportMeshingStep("Gmsh HXT: reading the mesh back");
-    TetMesh result = readMesh(mesh.get(), surfacePoints);
+    TetMesh result = readMesh(mesh.get(), surfacePoints, order);
     const hxtStatus freed = mesh.release();
     if (freed != 0)
     {
