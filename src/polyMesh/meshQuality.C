@@ -38,7 +38,9 @@ using namespace Foam;
 // would keep three face fields and two cell fields (about 130 bytes per
 // cell), the largest part of stage 6's peak. Only the cell centres and
 // volumes are kept here; the formulas are primitiveMesh's, so the figures
-// are checkMesh's.
+// are checkMesh's (to rounding: each internal face's centre is computed
+// once for both its cells, so a cell's sums add the same terms in another
+// order).
 
 //- primitiveMeshFaceCentresAndAreas: a triangle directly (every face of a
 //  tet mesh), a larger face (a prism's side quad) as the triangles from
@@ -105,21 +107,24 @@ void cellCentresAndVolumes
     const labelList& nei = mesh.faceNeighbour();
 
     nPrisms = 0;
+    const label nInternal = mesh.nInternalFaces();
     vectorField estimate(mesh.nCells(), Zero);
     {
         labelField nCellFaces(mesh.nCells(), 0);
         vector c, s;
         forAll(own, facei)
         {
+            // One face centre for both cells of an internal face: the sums
+            // take the same terms as primitiveMesh's (owner loop, then
+            // neighbour loop), in another order
             faceCentreAndArea(p, faces[facei], c, s);
             estimate[own[facei]] += c;
             ++nCellFaces[own[facei]];
-        }
-        forAll(nei, facei)
-        {
-            faceCentreAndArea(p, faces[facei], c, s);
-            estimate[nei[facei]] += c;
-            ++nCellFaces[nei[facei]];
+            if (facei < nInternal)
+            {
+                estimate[nei[facei]] += c;
+                ++nCellFaces[nei[facei]];
+            }
         }
         forAll(estimate, celli)
         {
@@ -135,16 +140,17 @@ void cellCentresAndVolumes
     forAll(own, facei)
     {
         faceCentreAndArea(p, faces[facei], c, s);
-        const scalar pyr3Vol = s & (c - estimate[own[facei]]);
-        centres[own[facei]] += pyr3Vol*((3.0/4.0)*c + (1.0/4.0)*estimate[own[facei]]);
-        volumes[own[facei]] += pyr3Vol;
-    }
-    forAll(nei, facei)
-    {
-        faceCentreAndArea(p, faces[facei], c, s);
-        const scalar pyr3Vol = s & (estimate[nei[facei]] - c);
-        centres[nei[facei]] += pyr3Vol*((3.0/4.0)*c + (1.0/4.0)*estimate[nei[facei]]);
-        volumes[nei[facei]] += pyr3Vol;
+        const label o = own[facei];
+        const scalar ownPyr3Vol = s & (c - estimate[o]);
+        centres[o] += ownPyr3Vol*((3.0/4.0)*c + (1.0/4.0)*estimate[o]);
+        volumes[o] += ownPyr3Vol;
+        if (facei < nInternal)
+        {
+            const label n = nei[facei];
+            const scalar neiPyr3Vol = s & (estimate[n] - c);
+            centres[n] += neiPyr3Vol*((3.0/4.0)*c + (1.0/4.0)*estimate[n]);
+            volumes[n] += neiPyr3Vol;
+        }
     }
     forAll(centres, celli)
     {
