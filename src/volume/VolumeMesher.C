@@ -8,9 +8,12 @@
 #include "surfaceTopology.H"
 #include "pmshError.H"
 #include "tetFaceMatching.H"
+#include "matchByPoints.H"
+#include "acrossFace.H"
 #include "meshingStep.H"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * //
@@ -132,6 +135,123 @@ void checkClosedSurface
 }
 
 
+//- The contract's face check when the backend says what lies across each
+//  tet face (TetMesh::across, the quality pass's own matching): one pass
+//  instead of matching all faces again. Each claim must hold: a tet across
+//  has the same three points the other way round and claims this tet back;
+//  a surface triangle across is the face, outward, and is claimed once; no
+//  triangle is left. Pairs that hold everywhere make the tets a closed
+//  complex on the surface, which covers the inside once (positive tets,
+//  the surface claimed once); as a second guard the volumes must add up to
+//  the enclosed volume, not to twice or more.
+void checkClaimedAcross
+(
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
+    const TetMesh& result,
+    const std::string& what
+)
+{
+    const std::string notConforming = what + " is not conforming to the surface";
+    const label nTets = label(result.tets.size());
+    const label nTris = label(surfaceTriangles.size());
+    std::vector<char> claimed(surfaceTriangles.size(), 0);
+    auto refuse = [&](label t, int k, const std::string& why)
+    {
+        const triVerts f = tetFace(result.tets[t], k);
+        throw FatalError
+        (
+            msg() << notConforming << ":\n    tet " << t << " face (" << f[0] << ' '
+                << f[1] << ' ' << f[2] << "): " << why,
+            function
+        );
+    };
+    for (label t = 0; t < nTets; ++t)
+    {
+        for (int k = 0; k < 4; ++k)
+        {
+            const triVerts f = tetFace(result.tets[t], k);
+            const label a = result.across[4*t + k];
+            if (isAcrossBoundary(a))
+            {
+                const label b = boundaryAcross(a);
+                if (b < 0 || b >= nTris)
+                {
+                    refuse(t, k, "on no surface triangle (boundary face not in the surface)");
+                }
+                if (sortedPoints(f) != sortedPoints(surfaceTriangles[b]))
+                {
+                    refuse(t, k, "not surface triangle " + std::to_string(b) + ", which is claimed across it");
+                }
+                if (!sameOrientation(f, surfaceTriangles[b]))
+                {
+                    refuse(t, k, "surface triangle " + std::to_string(b) + " is not oriented outward from it");
+                }
+                if (claimed[b]++)
+                {
+                    refuse(t, k, "surface triangle " + std::to_string(b) + " is on two tet faces (duplicates)");
+                }
+                continue;
+            }
+            if (a >= nTets || a == t)
+            {
+                refuse(t, k, "claims tet " + std::to_string(a) + " across it");
+            }
+            const tetVerts& u = result.tets[a];
+            int l = -1;
+            for (int m = 0; m < 4; ++m)
+            {
+                if (u[m] != f[0] && u[m] != f[1] && u[m] != f[2]) l = l < 0 ? 3 - m : 4;
+            }
+            const bool shared = l >= 0 && l < 4 && sortedPoints(tetFace(u, l)) == sortedPoints(f);
+            if (!shared || result.across[4*a + l] != t)
+            {
+                refuse(t, k, "tet " + std::to_string(a) + " across it does not have it across (overlapping or open tets)");
+            }
+            if (sameOrientation(f, tetFace(u, l)))
+            {
+                refuse(t, k, "tet " + std::to_string(a) + " lies on the same side (overlapping tets)");
+            }
+        }
+    }
+    for (label b = 0; b < nTris; ++b)
+    {
+        if (!claimed[b])
+        {
+            throw FatalError
+            (
+                msg() << notConforming << ":\n    surface triangle " << b
+                    << " is not a tet face",
+                function
+            );
+        }
+    }
+
+    double enclosed6 = 0, volume6 = 0;
+    for (const triVerts& t : surfaceTriangles)
+    {
+        enclosed6 += dot(surfacePoints[t[0]], cross(surfacePoints[t[1]], surfacePoints[t[2]]));
+    }
+    for (const tetVerts& c : result.tets)
+    {
+        volume6 += tetVolume6
+        (
+            result.points[c[0]], result.points[c[1]], result.points[c[2]], result.points[c[3]]
+        );
+    }
+    // A whole number of times the inside: once, or at least twice
+    if (!(std::abs(volume6 - enclosed6) < 0.5*enclosed6))
+    {
+        throw FatalError
+        (
+            msg() << notConforming << ":\n    its tets fill " << volume6/enclosed6
+                << " times the volume inside the surface (overlapping tets)",
+            function
+        );
+    }
+}
+
+
 //- Throw FatalError (naming `what`) unless `result` meets the contract of
 //  VolumeMesher.H.
 void verifyVolumeMesh
@@ -238,6 +358,11 @@ void verifyVolumeMesh
     // outward. (With positive tets this also rules out gaps and overlaps.
     // Volumes alone would add up even when a backend duplicates an interior
     // point, as Gmsh 4.8's multithreaded HXT does.)
+    if (result.across.size() == 4*result.tets.size())
+    {
+        checkClaimedAcross(surfacePoints, surfaceTriangles, result, what);
+        return;
+    }
     fittingTetFaces
     (
         np, result.tets, surfaceTriangles, what + " is not conforming to the surface", function
@@ -325,6 +450,7 @@ pmsh::TetMesh pmsh::VolumeMesher::mesh
         surfacePoints, surfaceTriangles, result,
         title() + "'s mesh of " + parameters.what
     );
+    freeStorage(result.across);
     return result;
 }
 

@@ -120,6 +120,9 @@ pmsh::qualityPassStats pmsh::improveWorstCells
         m, sliverRemovalSteps, qualityPass::rejectSliverBadness, qualityPass::rejectBadness, false
     );
     stats.worstBefore = all.worstBefore;
+    // The last step ended with a rebuild: the faces were matched anew,
+    // which the contract need not do again (VolumeMesher::mesh)
+    mesh.across = m.takeAcross();
     return stats;
 }
 
@@ -134,11 +137,13 @@ pmsh::qualityPassStats pmsh::removeSlivers
 {
     qualityPass::passMesh m(mesh, nFixedPoints, triangles, interface);
     m.insertPoints = true;
-    return runSteps
+    const qualityPassStats stats = runSteps
     (
         m, sliverRemovalSteps, qualityPass::rejectSliverBadness, qualityPass::rejectBadness,
         false
     );
+    mesh.across = m.takeAcross();
+    return stats;
 }
 
 

@@ -5,6 +5,8 @@
 #include "testPaths.H"
 #include "VolumeMesher.H"
 #include "hxtBackends.H"
+#include "tetFaceMatching.H"
+#include "acrossFace.H"
 #include "Geometry.H"
 #include "netgenInterface.H"
 #include "partitionCoarseMesh.H"
@@ -351,6 +353,62 @@ TEST(VolumeMesher, meshRejectsAResultThatBreaksTheContract)
         EXPECT_FATAL(meshGiven(m), "is not conforming");
     }
     EXPECT_FATAL(meshGiven(TetMesh()), "has no tets");
+}
+
+
+TEST(VolumeMesher, theContractChecksWhatTheBackendSaysIsAcrossEachFaceClaimByClaim)
+{
+    // The quality pass hands its own face matching to the contract
+    // (TetMesh::across), which checks every claim in one pass instead of
+    // matching the faces again: a claim that does not hold is refused as a
+    // non-conforming mesh, as the matching would refuse the mesh itself
+    const surface s = icosphere(1);
+    TetMesh good = VolumeMesher::New("netgen")->mesh(s.points, s.triangles, {});
+    const tetFaceMatch match = matchTetFaces(good.points.size(), good.tets, s.triangles);
+    ASSERT_TRUE(match.fits());
+    for (faceId id = 0; id < match.nTetFaces; ++id)
+    {
+        good.across.push_back(match.acrossOf(id));
+    }
+    const auto meshGiven = [&](const TetMesh& m)
+    {
+        return givenMeshMesher(m).mesh(s.points, s.triangles, {});
+    };
+    EXPECT_TRUE(meshGiven(good).across.empty()) << "checked, then cleared";
+
+    // A tet across that does not claim this one back
+    const label t = label(std::find_if(good.across.begin(), good.across.end(), [](label a) { return a >= 0; }) - good.across.begin());
+    {
+        TetMesh m = good;
+        m.across[t] = m.across[t] == 0 ? 1 : 0;
+        EXPECT_FATAL(meshGiven(m), "is not conforming");
+    }
+    // A boundary face said to be another surface triangle, or none
+    const label b = label(std::find_if(good.across.begin(), good.across.end(), isAcrossBoundary) - good.across.begin());
+    {
+        TetMesh m = good;
+        m.across[b] = acrossBoundary((boundaryAcross(m.across[b]) + 1) % label(s.triangles.size()));
+        EXPECT_FATAL(meshGiven(m), "is not conforming");
+    }
+    {
+        TetMesh m = good;
+        m.across[b] = acrossBoundary(label(s.triangles.size()));
+        EXPECT_FATAL(meshGiven(m), "on no surface triangle");
+    }
+    // An internal face said to be a surface triangle: its triangle is then
+    // claimed twice or it is not the face
+    {
+        TetMesh m = good;
+        m.across[t] = m.across[b];
+        EXPECT_FATAL(meshGiven(m), "is not conforming");
+    }
+    // The tets wrong and the claims unchanged: the claims no longer hold
+    {
+        TetMesh m = good;
+        m.tets.pop_back();
+        m.across.resize(4*m.tets.size());
+        EXPECT_FATAL(meshGiven(m), "is not conforming");
+    }
 }
 
 
