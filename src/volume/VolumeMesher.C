@@ -38,7 +38,8 @@ const char* const function = "pmsh::VolumeMesher::mesh";
 //- Throw FatalError (naming `what`) unless the triangles form a closed,
 //  manifold, consistently oriented surface enclosing a positive volume and
 //  using every point: what every backend needs (Netgen may crash on less).
-void checkClosedSurface
+//  Returns 6 times the enclosed volume.
+double checkClosedSurface
 (
     const std::vector<point3>& points,
     const std::vector<triVerts>& triangles,
@@ -132,6 +133,7 @@ void checkClosedSurface
             function
         );
     }
+    return v6;
 }
 
 
@@ -146,8 +148,8 @@ void checkClosedSurface
 //  the enclosed volume, not to twice or more.
 void checkClaimedAcross
 (
-    const std::vector<point3>& surfacePoints,
     const std::vector<triVerts>& surfaceTriangles,
+    const double enclosed6,
     const TetMesh& result,
     const std::string& what
 )
@@ -197,13 +199,11 @@ void checkClaimedAcross
             {
                 refuse(t, k, "claims tet " + std::to_string(a) + " across it");
             }
+            // u's face opposite its apex, the one point of u off f, must be
+            // f (had u two points off f, that face would not be)
             const tetVerts& u = result.tets[a];
-            int l = -1;
-            for (int m = 0; m < 4; ++m)
-            {
-                if (u[m] != f[0] && u[m] != f[1] && u[m] != f[2]) l = l < 0 ? 3 - m : 4;
-            }
-            const bool shared = l >= 0 && l < 4 && sortedPoints(tetFace(u, l)) == sortedPoints(f);
+            const int l = 3 - int(std::find(u.begin(), u.end(), tetApex(u, f)) - u.begin());
+            const bool shared = l >= 0 && sortedPoints(tetFace(u, l)) == sortedPoints(f);
             if (!shared || result.across[4*a + l] != t)
             {
                 refuse(t, k, "tet " + std::to_string(a) + " across it does not have it across (overlapping or open tets)");
@@ -227,11 +227,7 @@ void checkClaimedAcross
         }
     }
 
-    double enclosed6 = 0, volume6 = 0;
-    for (const triVerts& t : surfaceTriangles)
-    {
-        enclosed6 += dot(surfacePoints[t[0]], cross(surfacePoints[t[1]], surfacePoints[t[2]]));
-    }
+    double volume6 = 0;
     for (const tetVerts& c : result.tets)
     {
         volume6 += tetVolume6
@@ -253,11 +249,12 @@ void checkClaimedAcross
 
 
 //- Throw FatalError (naming `what`) unless `result` meets the contract of
-//  VolumeMesher.H.
+//  VolumeMesher.H; enclosed6 is checkClosedSurface's.
 void verifyVolumeMesh
 (
     const std::vector<point3>& surfacePoints,
     const std::vector<triVerts>& surfaceTriangles,
+    const double enclosed6,
     const TetMesh& result,
     const std::string& what
 )
@@ -360,7 +357,7 @@ void verifyVolumeMesh
     // point, as Gmsh 4.8's multithreaded HXT does.)
     if (result.across.size() == 4*result.tets.size())
     {
-        checkClaimedAcross(surfacePoints, surfaceTriangles, result, what);
+        checkClaimedAcross(surfaceTriangles, enclosed6, result, what);
         return;
     }
     fittingTetFaces
@@ -438,7 +435,7 @@ pmsh::TetMesh pmsh::VolumeMesher::mesh
 ) const
 {
     reportMeshingStep("checking the surface");
-    checkClosedSurface(surfacePoints, surfaceTriangles, parameters.what);
+    const double enclosed6 = checkClosedSurface(surfacePoints, surfaceTriangles, parameters.what);
     reportMeshingStep(title() + ": " + std::to_string(surfaceTriangles.size()) + " surface triangles");
     TetMesh result = generate(surfacePoints, surfaceTriangles, parameters);
     reportMeshingStep
@@ -447,7 +444,7 @@ pmsh::TetMesh pmsh::VolumeMesher::mesh
     );
     verifyVolumeMesh
     (
-        surfacePoints, surfaceTriangles, result,
+        surfacePoints, surfaceTriangles, enclosed6, result,
         title() + "'s mesh of " + parameters.what
     );
     freeStorage(result.across);

@@ -374,12 +374,6 @@ pmsh::TetMesh pmsh::gmshModelMesh
         model.addVolumes();
         model.setMeshingOptions(parameters);
 
-        reportMeshingStep
-        (
-            parameters.optimisationSteps > 0
-          ? "Gmsh HXT: tetrahedra, then HXT's optimiser"
-          : "Gmsh HXT: tetrahedra"
-        );
         gmsh::model::mesh::generate(3);
         reportMeshingStep("Gmsh HXT: reading the mesh back");
 

@@ -453,12 +453,6 @@ pmsh::TetMesh pmsh::hxtLibraryMesh
     options.nodalSizes.max = 1e22;
     options.nodalSizes.factor = 1;
 
-    reportMeshingStep
-    (
-        parameters.optimisationSteps > 0
-      ? "Gmsh HXT: tetrahedra, then HXT's optimiser"
-      : "Gmsh HXT: tetrahedra"
-    );
     const hxtStatus status = hxtTetMesh(mesh.get(), &options);
     if (status != 0)
     {

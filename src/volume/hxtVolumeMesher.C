@@ -128,6 +128,12 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
         );
     }
 
+    reportMeshingStep
+    (
+        parameters.optimisationSteps > 0
+      ? "Gmsh HXT: tetrahedra, then HXT's optimiser"
+      : "Gmsh HXT: tetrahedra"
+    );
     TetMesh result =
         hxtLibraryAvailable()
       ? hxtLibraryMesh(surfacePoints, surfaceTriangles, volumes, parameters)

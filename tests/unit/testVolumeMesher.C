@@ -60,6 +60,18 @@ surface boundarySurface(const CoarseMesh& m)
 }
 
 
+//- Six times the volume a closed surface encloses.
+double enclosed6(const closedSurface& c)
+{
+    double v = 0;
+    for (const triVerts& t : c.triangles)
+    {
+        v += dot(c.points[t[0]], cross(c.points[t[1]], c.points[t[2]]));
+    }
+    return v;
+}
+
+
 } // End anonymous namespace
 
 
@@ -465,15 +477,6 @@ TEST(hxtVolumeMesher, surfacesOfSeveralShellsWithHolesAndApartParts)
     // The tets fill the two balls less their holes: their volume is the
     // surface's (the contract check in mesh() has already seen every
     // triangle the face of one tet)
-    const auto enclosed6 = [](const closedSurface& c)
-    {
-        double v = 0;
-        for (const triVerts& t : c.triangles)
-        {
-            v += dot(c.points[t[0]], cross(c.points[t[1]], c.points[t[2]]));
-        }
-        return v;
-    };
     double volume6 = 0;
     for (const tetVerts& t : m.tets)
     {
@@ -490,8 +493,8 @@ namespace
 {
 
 //- An icosphere of radius 1 with a hole of radius 0.4 (the body of a
-//  body-in-box partition): the shells, the volume it encloses (x 6)
-closedSurface ballWithAHole(double& enclosed6)
+//  body-in-box partition)
+closedSurface ballWithAHole()
 {
     closedSurface s = icosphere(3);
     const closedSurface hole = icosphere(2);
@@ -501,11 +504,6 @@ closedSurface ballWithAHole(double& enclosed6)
     {
         s.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
     }
-    enclosed6 = 0;
-    for (const triVerts& t : s.triangles)
-    {
-        enclosed6 += dot(s.points[t[0]], cross(s.points[t[1]], s.points[t[2]]));
-    }
     return s;
 }
 
@@ -514,7 +512,7 @@ closedSurface ballWithAHole(double& enclosed6)
 //  points kept, positive tets, every surface triangle the face of a tet,
 //  and the tets' volumes adding up to the enclosed volume (no tet in the
 //  hole, none outside)
-void expectTheSurfaceFilled(const closedSurface& s, double enclosed6, const TetMesh& m)
+void expectTheSurfaceFilled(const closedSurface& s, const TetMesh& m)
 {
     ASSERT_GT(m.points.size(), s.points.size());
     for (std::size_t i = 0; i < s.points.size(); ++i)
@@ -535,7 +533,7 @@ void expectTheSurfaceFilled(const closedSurface& s, double enclosed6, const TetM
             faces.insert(tri);
         }
     }
-    EXPECT_NEAR(volume6, enclosed6, 1e-9*enclosed6);
+    EXPECT_NEAR(volume6, enclosed6(s), 1e-9*enclosed6(s));
     for (triVerts t : s.triangles)
     {
         std::sort(t.begin(), t.end());
@@ -563,8 +561,7 @@ std::pair<double, double> meanVolumeInAndOut(const TetMesh& m, const point3& cen
 
 TEST(hxtVolumeMesher, bothWaysIntoHxtFillABallAroundAHoleAlike)
 {
-    double enclosed6 = 0;
-    const closedSurface s = ballWithAHole(enclosed6);
+    const closedSurface s = ballWithAHole();
     const shellVolumes v = findShellVolumes(s.points, s.triangles);
     ASSERT_EQ(v.volumes.size(), 1u);
     ASSERT_EQ(v.volumes[0].size(), 2u) << "the outer shell and its hole";
@@ -572,13 +569,13 @@ TEST(hxtVolumeMesher, bothWaysIntoHxtFillABallAroundAHoleAlike)
     p.maxCellSize = 0.1;
 
     const TetMesh viaGmsh = gmshModelMesh(s.points, s.triangles, v, p);
-    expectTheSurfaceFilled(s, enclosed6, viaGmsh);
+    expectTheSurfaceFilled(s, viaGmsh);
     if (!hxtLibraryAvailable())
     {
         GTEST_SKIP() << "Gmsh " << gmshVersion() << " is not 4.8: HXT is reached through Gmsh's model only";
     }
     const TetMesh direct = hxtLibraryMesh(s.points, s.triangles, v, p);
-    expectTheSurfaceFilled(s, enclosed6, direct);
+    expectTheSurfaceFilled(s, direct);
     // The same algorithm and sizes, another insertion order
     const double ratio = double(direct.tets.size())/double(viaGmsh.tets.size());
     EXPECT_GT(ratio, 0.9) << direct.tets.size() << " against " << viaGmsh.tets.size();
