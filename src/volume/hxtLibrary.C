@@ -346,10 +346,11 @@ hxtStatus interiorSizes(double* coord, uint32_t*, size_t n, void* data)
 //- The tets inside the volumes, positive, into a TetMesh: the surface
 //  points first, in their order (HXT keeps its input vertices where they
 //  were: HXT vertex i is surface point order[i]), then the points HXT
-//  added, in its order
+//  added, in its order. With them, the tet across each face, from HXT's
+//  own adjacency. HXT's colour array is spent doing so.
 TetMesh readMesh
 (
-    const HXTMesh* m,
+    HXTMesh* m,
     const std::vector<point3>& surfacePoints,
     const std::vector<label>& order
 )
@@ -398,10 +399,19 @@ TetMesh readMesh
         result.points.push_back({x[0], x[1], x[2]});
     }
 
+    // Each tet's index in the result goes where its colour was, once read
+    // (4 bytes a tet spared at stage 4's peak); outside: none
+    constexpr uint32_t none = UINT32_MAX;
+    uint32_t* const resultIndex = m->tetrahedra.color;
     result.tets.reserve(nTets);
     for (uint64_t t = 0; t < m->tetrahedra.num; ++t)
     {
-        if (!inside(t)) continue;
+        if (!inside(t))
+        {
+            resultIndex[t] = none;
+            continue;
+        }
+        resultIndex[t] = uint32_t(result.tets.size());
         const uint32_t* n = m->tetrahedra.node + 4*t;
         tetVerts v{index[n[0]], index[n[1]], index[n[2]], index[n[3]]};
         const auto& P = result.points;
@@ -410,6 +420,24 @@ TetMesh readMesh
             std::swap(v[2], v[3]);
         }
         result.tets.push_back(v);
+    }
+
+    // HXT's neigh[4t + l] is 4u + l', u's facet l' against t's facet l,
+    // facet l opposite node l; pmshFoam's face k is opposite point 3 - k
+    // (tetFace), and nodes 2 and 3 trade places in a tet turned positive
+    result.tetsAcross.resize(4*nTets);
+    for (uint64_t t = 0; t < m->tetrahedra.num; ++t)
+    {
+        const uint32_t i = resultIndex[t];
+        if (i == none) continue;
+        const bool turned = result.tets[i][2] != index[m->tetrahedra.node[4*t + 2]];
+        for (int l = 0; l < 4; ++l)
+        {
+            const uint64_t n = m->tetrahedra.neigh[4*t + l];
+            const uint32_t u = n/4 < m->tetrahedra.num ? resultIndex[n/4] : none;
+            const int at = turned && l >= 2 ? 5 - l : l;
+            result.tetsAcross[4*i + 3 - at] = u == none ? -1 : label(u);
+        }
     }
     return result;
 }

@@ -22,6 +22,19 @@ pmsh::qualityPass::passMesh::passMesh
     pointTris_(3*triangles.size()),
     processor_(triangles.size() + 1, 0)
 {
+    // The backend's matching, where there is one, addresses every tet
+    // before the first rebuild; only the surface faces are left unknown
+    if (mesh.tetsAcross.size() == 4*mesh.tets.size())
+    {
+        across_ = std::move(mesh.tetsAcross);
+        for (label& u : across_)
+        {
+            if (u < 0) u = unknown;
+        }
+        nAddressed_ = label(mesh.tets.size());
+    }
+    freeStorage(mesh.tetsAcross);
+
     for (const triVerts& f : triangles)
     {
         for (label p : f) ++triStart_[p + 1];
@@ -41,8 +54,7 @@ pmsh::qualityPass::passMesh::passMesh
 void pmsh::qualityPass::passMesh::rebuild()
 {
     // Remove the deleted tets; a tet addressed before keeps what is across
-    // its faces, renumbered, unless that tet was deleted (unknown below)
-    constexpr label unknown = std::numeric_limits<label>::min();
+    // its faces, renumbered, unless that tet was deleted (unknown)
     std::vector<label> newIndex(tets_.size(), -1);
     label n = 0;
     for (label t = 0; t < label(tets_.size()); ++t)

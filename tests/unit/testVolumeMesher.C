@@ -12,6 +12,7 @@
 #include "partitionCoarseMesh.H"
 #include "surfaceRefinement.H"
 #include "testMeshers.H"
+#include "tetQualityPass.H"
 #include "testUtilities.H"
 
 #include <gtest/gtest.h>
@@ -580,6 +581,48 @@ TEST(hxtVolumeMesher, bothWaysIntoHxtFillABallAroundAHoleAlike)
     const double ratio = double(direct.tets.size())/double(viaGmsh.tets.size());
     EXPECT_GT(ratio, 0.9) << direct.tets.size() << " against " << viaGmsh.tets.size();
     EXPECT_LT(ratio, 1.1) << direct.tets.size() << " against " << viaGmsh.tets.size();
+}
+
+
+TEST(hxtVolumeMesher, calledDirectlyHxtSaysWhichTetIsAcrossEachFaceAsMatchingFindsIt)
+{
+    if (!hxtLibraryAvailable())
+    {
+        GTEST_SKIP() << "Gmsh " << gmshVersion() << " is not 4.8: HXT is reached through Gmsh's model only";
+    }
+    // Two shells, and HXT's optimiser on: it deletes and adds tets, and
+    // its adjacency must still hold once the tets outside are dropped
+    const closedSurface s = ballWithAHole();
+    const shellVolumes v = findShellVolumes(s.points, s.triangles);
+    volumeMeshParameters p;
+    p.maxCellSize = 0.1;
+    p.optimisationSteps = 1;
+    const TetMesh m = hxtLibraryMesh(s.points, s.triangles, v, p);
+    ASSERT_EQ(m.tetsAcross.size(), 4*m.tets.size());
+
+    const tetFaceMatch match = matchTetFaces(m.points.size(), m.tets, s.triangles);
+    ASSERT_TRUE(match.fits()) << match.problems;
+    label nSurfaceFaces = 0;
+    for (std::size_t id = 0; id < m.tetsAcross.size(); ++id)
+    {
+        const label matched = match.acrossOf(faceId(id));
+        const label expected = isAcrossBoundary(matched) ? -1 : matched;
+        ASSERT_EQ(m.tetsAcross[id], expected) << "tet " << id/4 << " face " << id % 4;
+        nSurfaceFaces += expected < 0;
+    }
+    EXPECT_EQ(nSurfaceFaces, label(s.triangles.size()));
+
+    // The quality pass started from it does what it does from its own
+    TetMesh seeded = m;
+    TetMesh unseeded = m;
+    unseeded.tetsAcross.clear();
+    const label nFixed = label(s.points.size());
+    improveWorstCells(seeded, nFixed, s.triangles, {}, 2);
+    improveWorstCells(unseeded, nFixed, s.triangles, {}, 2);
+    EXPECT_TRUE(seeded.tetsAcross.empty());
+    EXPECT_EQ(seeded.tets, unseeded.tets);
+    EXPECT_EQ(seeded.points, unseeded.points);
+    EXPECT_EQ(seeded.across, unseeded.across);
 }
 
 
