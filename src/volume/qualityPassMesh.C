@@ -53,6 +53,17 @@ pmsh::qualityPass::passMesh::passMesh
 
 void pmsh::qualityPass::passMesh::rebuild()
 {
+    // Nothing flipped, moved or inserted since the last rebuild (a step
+    // that changed nothing, the first of the next run of steps): the
+    // addressing holds, and a point whose smoothing failed would fail
+    // again, so it is not tried again either
+    const label changes = nFlips + nMoved + nInserted;
+    if (nAddressed_ == nTets() && changes == changesAtRebuild_)
+    {
+        return;
+    }
+    changesAtRebuild_ = changes;
+
     // Remove the deleted tets; a tet addressed before keeps what is across
     // its faces, renumbered, unless that tet was deleted (unknown)
     std::vector<label> newIndex(tets_.size(), -1);
