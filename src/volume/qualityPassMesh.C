@@ -135,13 +135,30 @@ void pmsh::qualityPass::passMesh::rebuild()
 
 void pmsh::qualityPass::passMesh::forgetQuietNearChanges()
 {
+    // A tet reads a changed point when the point is on it or on a tet
+    // across its faces: from each changed point's tets, those and the tets
+    // across their faces (a few thousand tets after a step, not all)
     changed_.resize(points_.size(), 1);
-    const auto changed = [&](label p) { return changed_[p] != 0; };
-    for (label t = 0; t < label(tets_.size()); ++t)
+    if (!anyQuiet_)
     {
-        if (quiet_[t] && anyPointRead(t, changed)) quiet_[t] = 0;
+        changed_.assign(points_.size(), 0);     // before the first scan
+        return;
     }
-    changed_.assign(points_.size(), 0);
+    for (label p = 0; p < label(points_.size()); ++p)
+    {
+        if (!changed_[p]) continue;
+        changed_[p] = 0;
+        for (label i = start_[p]; i < start_[p + 1]; ++i)
+        {
+            const label u = pointTets_[i];
+            quiet_[u] = 0;
+            for (int k = 0; k < 4; ++k)
+            {
+                const label t = across_[4*u + k];
+                if (t >= 0) quiet_[t] = 0;
+            }
+        }
+    }
 }
 
 

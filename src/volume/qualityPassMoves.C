@@ -12,15 +12,32 @@ void pmsh::qualityPass::passMesh::improve(label t)
         return;
     }
     ++nVisited;
-    if (!flip(t))
+    if (flip(t))
     {
-        const tetVerts c = tets_[t];
-        for (label p : c)
+        return;
+    }
+    const tetVerts c = tets_[t];
+    for (label p : c)
+    {
+        if (p >= nFixed_ && !locked_[p])
         {
-            if (p >= nFixed_ && !locked_[p])
-            {
-                smooth(p);
-            }
+            smooth(p);
+        }
+    }
+    if (insertAbove < infinite && current(t))
+    {
+        double worst = 0;
+        for (int k = 0; k < 4; ++k)
+        {
+            worst = std::max
+            (
+                worst,
+                badnessOf(c, k, across_[4*t + k], [&](label q) -> const point3& { return points_[q]; })
+            );
+        }
+        if (worst > insertAbove)
+        {
+            insertPoint(t);
         }
     }
 }
@@ -369,7 +386,7 @@ void pmsh::qualityPass::passMesh::smooth(label p)
 
     // Down the gradient of the worst face's badness
     const double h = 1e-5*length;
-    for (int iter = 0; iter < 6; ++iter)
+    for (int iter = 0; iter < smoothingIterations; ++iter)
     {
         label worstTet = -1;
         int worstFace = -1;

@@ -118,8 +118,13 @@ pmsh::qualityPassStats pmsh::improveWorstCells
 {
     qualityPass::passMesh m(mesh, nFixedPoints, triangles, interface);
     const qualityPassStats all = runSteps(m, steps, 0, qualityPass::visitBadness, true);
-    // Then the worst faces alone (the counts in m run on)
+    // Then the worst faces alone (the counts in m run on), with a point
+    // where neither flips nor smoothing mend them
+    m.insertAbove = qualityPass::worstFaceBadness;
+    const label insertedBefore = m.nInserted;
     runSteps(m, qualityPass::worstFaceSteps, 0, qualityPass::worstFaceBadness, false);
+    const label insertedAtWorstFaces = m.nInserted - insertedBefore;
+    m.insertAbove = qualityPass::infinite;
     // Last, what checkMesh would still reject, as removeSlivers does (a
     // point inserted where no flip or move mends it): with one step, a
     // sphere partition of 2.3M cells kept a sliver of aspect ratio 1.5e10,
@@ -130,6 +135,7 @@ pmsh::qualityPassStats pmsh::improveWorstCells
         m, sliverRemovalSteps, qualityPass::rejectSliverBadness, qualityPass::rejectBadness, false
     );
     stats.worstBefore = all.worstBefore;
+    stats.nInsertedAtWorstFaces = insertedAtWorstFaces;
     // The last step ended with a rebuild: the faces were matched anew,
     // which the contract need not do again (VolumeMesher::mesh)
     mesh.across = m.takeAcross();
