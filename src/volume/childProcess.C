@@ -90,8 +90,10 @@ public:
 };
 
 //- Wait until the child's reply starts (or it hangs up), logging a line
-//  every `interval` seconds meanwhile.
-void waitLogging
+//  every `interval` seconds meanwhile. Empty, or why the child is taken
+//  for hung: it used more CPU time since its last sign of progress than
+//  it allowed itself (expectProgressWithin).
+std::string waitLogging
 (
     int fd,
     pid_t child,
@@ -118,7 +120,7 @@ void waitLogging
         const int ready = ::poll(&reply, 1, int(std::max<long long>(0, wait)));
         if (ready > 0 || (ready < 0 && errno != EINTR))
         {
-            return;
+            return {};
         }
         if (ready == 0)
         {
@@ -129,6 +131,14 @@ void waitLogging
             double cpu = 0, resident = 0;
             processUsage(child, cpu, resident);
             const double elapsed = std::chrono::duration<double>(clock::now() - start).count();
+            const double allowed = step ? overdueAllowance(*step, cpu) : 0;
+            if (allowed > 0)
+            {
+                return msg()
+                    << "no sign of progress in " << std::lround(allowed)
+                    << " s of CPU time (step: " << lastStep << ", " << std::lround(elapsed)
+                    << " s so far): stopped as hung";
+            }
             std::ostringstream line;
             line
                 << "    " << attempt << ": " << std::lround(elapsed) << " s so far, CPU "
@@ -255,7 +265,7 @@ bool transferRequest(const Pipe& pipe, Request& r)
     bool ok =
         pipe(r.mesher) && pipe(r.points) && pipe(r.triangles)
      && pipe(p.maxCellSize) && pipe(p.grading)
-     && pipe(p.optimisationSteps) && pipe(p.threads)
+     && pipe(p.optimisationSteps) && pipe(p.threads) && pipe(p.pointOrder)
      && pipe(p.what) && pipe(p.interfaceTriangles)
      && pipe(nRegions);
     pipe.resize(p.regions, ok ? nRegions : 0);
@@ -439,7 +449,13 @@ pmsh::TetMesh runInChild
     childGuard running(child);
     ::close(fds[1]);
     inParent();
-    waitLogging(fds[0], child, step.get(), interval, attempt.empty() ? what : attempt);
+    const std::string hung =
+        waitLogging(fds[0], child, step.get(), interval, attempt.empty() ? what : attempt);
+    if (!hung.empty())
+    {
+        ::close(fds[0]);
+        throw FatalError(msg() << "The volume mesher of " << what << " made " << hung, function);
+    }
     // Read before waiting: a child blocked on a full pipe would never end
     char reply = -1;
     std::vector<char> errorText;

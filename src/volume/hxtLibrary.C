@@ -12,6 +12,7 @@
 
 #include <malloc.h>
 
+#include <atomic>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -253,12 +254,17 @@ public:
 //  breaks ties among the many cospherical points of a refined curved
 //  surface. A sphere partition of 55M cells walked in circles given its
 //  points in pmshFoam's order, and again shell by shell in order of first
-//  use; shuffled, it was meshed in 125 s (bench/results/massive.md).
-std::vector<label> insertionOrder(std::size_t nPoints)
+//  use; shuffled, it was meshed in 125 s (bench/results/massive.md). The
+//  shuffle is no cure: the next 107M-cell run walked in circles on a
+//  partition all the same. So HXT shows progress at each refinement round
+//  (interiorSizes), the parent stops a child that shows none for too long
+//  (expectProgressWithin), and each attempt of the retry ladder shuffles
+//  with a seed of its own (volumeMeshParameters::pointOrder).
+std::vector<label> insertionOrder(std::size_t nPoints, unsigned seed)
 {
     std::vector<label> order(nPoints);
     std::iota(order.begin(), order.end(), label(0));
-    uint64_t x = 88172645463325252ull;
+    uint64_t x = 88172645463325252ull ^ (0x9E3779B97F4A7C15ull*seed);
     for (std::size_t i = nPoints; i > 1; --i)
     {
         x ^= x << 13;
@@ -327,12 +333,34 @@ void setSurface
 }
 
 
+//- How much CPU time HXT may take, with `nPoints` points in its mesh,
+//  until its next refinement round begins (or it ends): far more than it
+//  takes. On this machine a 54M-cell partition (9M points) took 240 s in
+//  all, its optimiser and the longest rounds well under 100 s each; a
+//  walk in circles never ends.
+double hxtCpuAllowance(std::size_t nPoints)
+{
+    return 120 + 60e-6*double(nPoints);
+}
+
+
+//- What HXT's size callback reads: the sizes, and the points so far
+struct sizeCallbackData
+{
+    const volumeMeshParameters* parameters;
+    std::atomic<std::size_t> nPoints;
+};
+
+
 //- HXT's size callback: each new point's size is the one HXT interpolated
 //  from the surface, at most the interior size there (as Gmsh does with
-//  Mesh.MeshSizeExtendFromBoundary and its background field)
+//  Mesh.MeshSizeExtendFromBoundary and its background field). HXT calls
+//  it once per refinement round: the sign of progress its parent waits for
 hxtStatus interiorSizes(double* coord, uint32_t*, size_t n, void* data)
 {
-    const volumeMeshParameters& parameters = *static_cast<const volumeMeshParameters*>(data);
+    sizeCallbackData& d = *static_cast<sizeCallbackData*>(data);
+    expectProgressWithin(hxtCpuAllowance(d.nPoints += n));
+    const volumeMeshParameters& parameters = *d.parameters;
     for (size_t i = 0; i < n; ++i)
     {
         double* x = coord + 4*i;
@@ -464,7 +492,7 @@ pmsh::TetMesh pmsh::hxtLibraryMesh
     hxtSetMessageCallback(keepComplaints);
 
     hxtMesh mesh;
-    const std::vector<label> order = insertionOrder(surfacePoints.size());
+    const std::vector<label> order = insertionOrder(surfacePoints.size(), parameters.pointOrder);
     setSurface(mesh.get(), surfacePoints, order, surfaceTriangles, volumes);
 
     // As Gmsh 4.8 calls it (meshGRegionHxt.cpp): reproducible, refined
@@ -476,12 +504,15 @@ pmsh::TetMesh pmsh::hxtLibraryMesh
     options.refine = 1;
     options.optimize = parameters.optimisationSteps > 0;
     options.quality.min = hxtOptimiserThreshold;
+    sizeCallbackData sizes{&parameters, {surfacePoints.size()}};
     options.nodalSizes.callback = interiorSizes;
-    options.nodalSizes.userData = const_cast<volumeMeshParameters*>(&parameters);
+    options.nodalSizes.userData = &sizes;
     options.nodalSizes.max = 1e22;
     options.nodalSizes.factor = 1;
 
+    expectProgressWithin(hxtCpuAllowance(surfacePoints.size()));
     const hxtStatus status = hxtTetMesh(mesh.get(), &options);
+    expectProgressWithin(0);
     if (status != 0)
     {
         hxtFailed(status, parameters.what);

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <mutex>
 #include <new>
+#include <ctime>
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -35,6 +36,28 @@ void pmsh::reportMeshingStep(const std::string& step)
     {
         writeStep(*childStep, step);
     }
+}
+
+
+void pmsh::expectProgressWithin(double cpuSeconds)
+{
+    if (childStep)
+    {
+        timespec now{};
+        ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+        // Bound first: the parent never sees the new bound from the old time
+        childStep->allowedCpu.store(0, std::memory_order_release);
+        childStep->progressCpu.store(double(now.tv_sec) + 1e-9*double(now.tv_nsec), std::memory_order_release);
+        childStep->allowedCpu.store(cpuSeconds, std::memory_order_release);
+    }
+}
+
+
+double pmsh::overdueAllowance(const sharedStep& shared, double childCpu)
+{
+    const double allowed = shared.allowedCpu.load(std::memory_order_acquire);
+    const double since = shared.progressCpu.load(std::memory_order_acquire);
+    return allowed > 0 && childCpu > since + allowed ? allowed : 0;
 }
 
 

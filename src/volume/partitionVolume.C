@@ -157,12 +157,17 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
         [&](const ladderAttempt<volumeAttempt>& at, std::size_t a)
         {
             partitionVolumeResult result;
+            // Each attempt inserts the points in an order of its own: a
+            // mesher that looped on one order (hxtLibrary.C) may not on
+            // another
+            volumeMeshParameters ordered = at.parameters.parameters;
+            ordered.pointOrder = unsigned(a);
             try
             {
                 result.mesh = meshInChildProcess
                 (
                     *at.parameters.mesher, surfacePoints, surfaceTriangles,
-                    at.parameters.parameters,
+                    ordered,
                     at.parameters.parameters.what + ", attempt " + std::to_string(a + 1)
                   + " (" + describe(at) + ")"
                 );

@@ -10,6 +10,8 @@
 #include "testUtilities.H"
 
 #include <gtest/gtest.h>
+#include <chrono>
+#include <ctime>
 
 #include <csignal>
 #include <cstdio>
@@ -337,6 +339,91 @@ TEST(meshInChildProcess, logsProgressWithTheAttemptAndTheChildsStep)
     EXPECT_LE(steps.size(), 6u) << out;
     ASSERT_FALSE(steps.empty());
     EXPECT_EQ(steps.back(), "filling the test volume") << out;
+}
+
+
+namespace
+{
+
+double processCpu()
+{
+    timespec now{};
+    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+    return double(now.tv_sec) + 1e-9*double(now.tv_nsec);
+}
+
+//- Burn `seconds` of CPU time, calling tick() every 10 ms of it
+template<class Tick>
+void burnCpu(double seconds, const Tick& tick)
+{
+    const double start = processCpu();
+    double next = start;
+    volatile double x = 1;
+    while (processCpu() < start + seconds)
+    {
+        for (int i = 0; i < 10000; ++i) x = x*1.0000001 + 1e-9;
+        if (processCpu() >= next)
+        {
+            tick();
+            next += 0.01;
+        }
+    }
+}
+
+} // End anonymous namespace
+
+
+TEST(meshInChildProcess, aChildThatShowsNoProgressWithinWhatItAllowedItselfIsStoppedAsHung)
+{
+    // As Gmsh 4.8's HXT walking in circles: busy, and never done
+    const scopedEnvironment interval("PMSH_PROGRESS_INTERVAL", "0.1");
+    const auto start = std::chrono::steady_clock::now();
+    try
+    {
+        meshInChildProcess
+        (
+            []
+            {
+                reportMeshingStep("walking in circles");
+                expectProgressWithin(0.3);
+                burnCpu(30, [] {});     // unstopped, it ends: the test fails
+                return TetMesh();
+            },
+            "a test surface"
+        );
+        FAIL() << "a child that never shows progress again was not stopped";
+    }
+    catch (const FatalError& e)
+    {
+        EXPECT_NE(e.message().find("a test surface"), std::string::npos) << e.message();
+        EXPECT_NE(e.message().find("stopped as hung"), std::string::npos) << e.message();
+        EXPECT_NE(e.message().find("walking in circles"), std::string::npos) << e.message();
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_LT(seconds, 20) << "stopped long after its allowance";
+}
+
+
+TEST(meshInChildProcess, aChildThatKeepsShowingProgressIsNotStopped)
+{
+    // 1.5 s of CPU in all, five times its allowance, but progress every
+    // 10 ms of it; then no bound for the rest
+    const scopedEnvironment interval("PMSH_PROGRESS_INTERVAL", "0.1");
+    const TetMesh m = meshInChildProcess
+    (
+        []
+        {
+            burnCpu(1.5, [] { expectProgressWithin(0.3); });
+            expectProgressWithin(0);
+            burnCpu(0.5, [] {});
+            TetMesh done;
+            done.points = {{1, 2, 3}};
+            return done;
+        },
+        "a test surface"
+    );
+    EXPECT_EQ(m.points.size(), 1u);
 }
 
 

@@ -626,6 +626,32 @@ TEST(hxtVolumeMesher, calledDirectlyHxtSaysWhichTetIsAcrossEachFaceAsMatchingFin
 }
 
 
+TEST(hxtVolumeMesher, calledDirectlyHxtInsertsThePointsInAnotherOrderForAnotherAttempt)
+{
+    if (!hxtLibraryAvailable())
+    {
+        GTEST_SKIP() << "Gmsh " << gmshVersion() << " is not 4.8: HXT is reached through Gmsh's model only";
+    }
+    // A retry must not repeat a walk in circles (hxtLibrary.C): each
+    // attempt's pointOrder gives HXT the points in another order, so
+    // another mesh of the same surface, and the same one again for the
+    // same order
+    const closedSurface s = icosphere(3);
+    const shellVolumes v = findShellVolumes(s.points, s.triangles);
+    volumeMeshParameters p;
+    p.maxCellSize = 0.15;
+    const TetMesh first = hxtLibraryMesh(s.points, s.triangles, v, p);
+    p.pointOrder = 1;
+    const TetMesh second = hxtLibraryMesh(s.points, s.triangles, v, p);
+    const TetMesh secondAgain = hxtLibraryMesh(s.points, s.triangles, v, p);
+    expectTheSurfaceFilled(s, first);
+    expectTheSurfaceFilled(s, second);
+    EXPECT_NE(first.points, second.points);
+    EXPECT_EQ(second.points, secondAgain.points);
+    EXPECT_EQ(second.tets, secondAgain.tets);
+}
+
+
 TEST(hxtVolumeMesher, bothWaysIntoHxtRefineInsideARefinementRegion)
 {
     const closedSurface s = icosphere(3);
