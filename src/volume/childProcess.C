@@ -139,17 +139,12 @@ std::string waitLogging
                     << " s of CPU time (step: " << lastStep << ", " << std::lround(elapsed)
                     << " s so far): stopped as hung";
             }
-            std::ostringstream line;
-            line
-                << "    " << attempt << ": " << std::lround(elapsed) << " s so far, CPU "
-                << std::lround(cpu) << " s, " << std::lround(resident/(1024*1024))
-                << " MiB, step: " << lastStep;
-            // Flushed once, prefix included: the lines of ranks that
-            // print at the same time do not cut into each other
-            const std::ios_base::fmtflags flags = std::cout.flags();
-            std::cout.unsetf(std::ios_base::unitbuf);
-            Foam::Pout<< line.str().c_str() << Foam::endl;
-            std::cout.flags(flags);
+            logMesherLine
+            (
+                msg() << attempt << ": " << std::lround(elapsed) << " s so far, CPU "
+                    << std::lround(cpu) << " s, " << std::lround(resident/(1024*1024))
+                    << " MiB, step: " << lastStep
+            );
             next += every;
         }
     }
@@ -369,6 +364,17 @@ std::string freshProcessExecutable;
 }
 
 } // End anonymous namespace
+
+
+void pmsh::logMesherLine(const std::string& line)
+{
+    // Flushed once, prefix included: the lines of ranks that print at the
+    // same time do not cut into each other
+    const std::ios_base::fmtflags flags = std::cout.flags();
+    std::cout.unsetf(std::ios_base::unitbuf);
+    Foam::Pout<< "    " << line.c_str() << Foam::endl;
+    std::cout.flags(flags);
+}
 
 
 double pmsh::progressInterval()

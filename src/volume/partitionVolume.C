@@ -150,6 +150,12 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
         return lines;
     };
 
+    const auto attemptName = [&](std::size_t a)
+    {
+        return parameters.what + ", attempt " + std::to_string(a + 1)
+          + " (" + describe(attempts[a]) + ")";
+    };
+
     ladderFailures failed;
     std::optional<partitionVolumeResult> meshed = climbLadder
     (
@@ -167,13 +173,23 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
                 result.mesh = meshInChildProcess
                 (
                     *at.parameters.mesher, surfacePoints, surfaceTriangles,
-                    ordered,
-                    at.parameters.parameters.what + ", attempt " + std::to_string(a + 1)
-                  + " (" + describe(at) + ")"
+                    ordered, attemptName(a)
                 );
             }
             catch (const FatalError& e)
             {
+                // Said now, not only once the partition is meshed: the
+                // next attempt may take long (another mesher, a large
+                // partition)
+                if (a + 1 < attempts.size())
+                {
+                    const std::string why = e.message();
+                    logMesherLine
+                    (
+                        attemptName(a) + " failed: " + why.substr(0, why.find('\n'))
+                      + "; attempt " + std::to_string(a + 2) + " (" + describe(attempts[a + 1]) + ") next"
+                    );
+                }
                 throw attemptFailed{e.message()};
             }
             result.backend = at.parameters.mesher->name();

@@ -179,15 +179,20 @@ TEST(partitionVolume, aFailingMesherFallsBackToTheNextOne)
     const closedSurface sphere = icosphere(2);
     const std::vector<point3>& pts = sphere.points;
     const std::vector<triVerts>& tris = sphere.triangles;
+    ::testing::internal::CaptureStdout();
     const partitionVolumeResult r = meshVolumeWithFallbacks
     (
         meshers(std::make_unique<failingMesher>(), VolumeMesher::New("hxt")),
         pts, tris, {}, tempFile("z.stl"), ""
     );
+    const std::string log = ::testing::internal::GetCapturedStdout();
     EXPECT_EQ(r.backend, "hxt");
     EXPECT_EQ(r.attempts, 4);   // as asked, without optimisation, graded, then hxt
     EXPECT_HAS(r.failures, "attempt 1 (failing): cannot mesh a closed surface");
     EXPECT_GT(r.mesh.tets.size(), 0u);
+    // Each failure is in the log as it happens, with what comes next
+    EXPECT_HAS(log, "a closed surface, attempt 1 (failing) failed: ");
+    EXPECT_HAS(log, "; attempt 4 (hxt; the hxt backend) next");
 }
 
 TEST(partitionVolume, aCrashingMesherFallsBackToTheNextOne)
