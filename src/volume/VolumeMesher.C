@@ -144,12 +144,14 @@ double checkClosedSurface
 //  a surface triangle across is the face, outward, and is claimed once; no
 //  triangle is left. Pairs that hold everywhere make the tets a closed
 //  complex on the surface, which covers the inside once (positive tets,
-//  the surface claimed once); as a second guard the volumes must add up to
-//  the enclosed volume, not to twice or more.
+//  the surface claimed once); as a second guard the tets' volumes (filled6,
+//  6 times their sum) must add up to the enclosed volume, not to twice or
+//  more.
 void checkClaimedAcross
 (
     const std::vector<triVerts>& surfaceTriangles,
     const double enclosed6,
+    const double filled6,
     const TetMesh& result,
     const std::string& what
 )
@@ -227,20 +229,12 @@ void checkClaimedAcross
         }
     }
 
-    double volume6 = 0;
-    for (const tetVerts& c : result.tets)
-    {
-        volume6 += tetVolume6
-        (
-            result.points[c[0]], result.points[c[1]], result.points[c[2]], result.points[c[3]]
-        );
-    }
     // A whole number of times the inside: once, or at least twice
-    if (!(std::abs(volume6 - enclosed6) < 0.5*enclosed6))
+    if (!(std::abs(filled6 - enclosed6) < 0.5*enclosed6))
     {
         throw FatalError
         (
-            msg() << notConforming << ":\n    its tets fill " << volume6/enclosed6
+            msg() << notConforming << ":\n    its tets fill " << filled6/enclosed6
                 << " times the volume inside the surface (overlapping tets)",
             function
         );
@@ -292,7 +286,8 @@ void verifyVolumeMesh
         }
     }
 
-    // Positive tets
+    // Positive tets (their volumes summed for checkClaimedAcross)
+    double filled6 = 0;
     for (std::size_t t = 0; t < result.tets.size(); ++t)
     {
         const tetVerts& c = result.tets[t];
@@ -328,6 +323,7 @@ void verifyVolumeMesh
                 function
             );
         }
+        filled6 += v6;
         const double aspectRatio = tetAspectRatio
         (
             result.points[c[0]], result.points[c[1]],
@@ -357,7 +353,7 @@ void verifyVolumeMesh
     // point, as Gmsh 4.8's multithreaded HXT does.)
     if (result.across.size() == 4*result.tets.size())
     {
-        checkClaimedAcross(surfaceTriangles, enclosed6, result, what);
+        checkClaimedAcross(surfaceTriangles, enclosed6, filled6, result, what);
         return;
     }
     fittingTetFaces
