@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <ctime>
 #include <mutex>
 #include <new>
-#include <ctime>
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -47,7 +47,8 @@ void pmsh::expectProgressWithin(double cpuSeconds)
         ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
         // Bound first: the parent never sees the new bound from the old time
         childStep->allowedCpu.store(0, std::memory_order_release);
-        childStep->progressCpu.store(double(now.tv_sec) + 1e-9*double(now.tv_nsec), std::memory_order_release);
+        const double cpu = double(now.tv_sec) + 1e-9*double(now.tv_nsec);
+        childStep->progressCpu.store(cpu, std::memory_order_release);
         childStep->allowedCpu.store(cpuSeconds, std::memory_order_release);
     }
 }

@@ -13,8 +13,8 @@ using namespace pmsh;
 //- The tets one step visits, worst first and once each: the slivers
 //  worse than `sliverBadness`, and the tets on both sides of the faces
 //  worse than `faceBadness`. Tets that were quiet at the last scan, and
-//  still are, are not measured again. With `worst`, the worst measures of the faces
-//  measured go there too.
+//  still are, are not measured again. With `worst`, the worst measures of
+//  the faces measured go there too.
 std::vector<std::pair<double, label>> tetsToVisit
 (
     qualityPass::passMesh& m,
