@@ -63,37 +63,60 @@ std::string secondsString(double seconds)
 }
 
 
-void restrictLocalSizes(netgen::Mesh& mesh, const meshParameters& p)
+namespace
+{
+
+//- restrictLocalSizes' samples, each given to setH(point, size)
+template<class SetH>
+void restrictAtSamples(const netgen::Box<3>& box, const meshParameters& p, SetH setH)
 {
     using namespace pmsh;
     for (const sizePoint& s : p.sizePoints)
     {
         if (s.size < p.maxh)
         {
-            mesh.RestrictLocalH(netgen::Point3d(s.p[0], s.p[1], s.p[2]), s.size);
+            setH(s.p, s.size);
         }
     }
-    if (p.regions.empty())
-    {
-        return;
-    }
-    const netgen::Box<3>& box = mesh.LocalHFunction().GetBoundingBox();
     const point3 lo{box.PMin()(0), box.PMin()(1), box.PMin()(2)};
     const point3 hi{box.PMax()(0), box.PMax()(1), box.PMax()(2)};
     for (const sizeRegion& r : p.regions)
     {
         if (r.size < p.maxh)
         {
-            forEachSample
-            (
-                r, lo, hi,
-                [&](const point3& x)
-                {
-                    mesh.RestrictLocalH(netgen::Point3d(x[0], x[1], x[2]), r.size);
-                }
-            );
+            forEachSample(r, lo, hi, [&](const point3& x) { setH(x, r.size); });
         }
     }
+}
+
+} // End anonymous namespace
+
+
+void restrictLocalSizes(netgen::Mesh& mesh, const meshParameters& p)
+{
+    restrictAtSamples
+    (
+        mesh.LocalHFunction().GetBoundingBox(), p,
+        [&](const point3& x, double h)
+        {
+            mesh.RestrictLocalH(netgen::Point3d(x[0], x[1], x[2]), h);
+        }
+    );
+}
+
+
+void restrictLocalSizes(netgen::LocalH& tree, const meshParameters& p)
+{
+    // What Mesh::RestrictLocalH does but for its floor, mparam.minh (0:
+    // pmshFoam sets none)
+    restrictAtSamples
+    (
+        tree.GetBoundingBox(), p,
+        [&](const point3& x, double h)
+        {
+            tree.SetH(netgen::Point<3>(x[0], x[1], x[2]), h);
+        }
+    );
 }
 
 } // End namespace ng

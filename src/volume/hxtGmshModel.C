@@ -14,10 +14,8 @@
 
 #include <algorithm>
 #include <cstring>
-#include <iomanip>
 #include <mutex>
 #include <numeric>
-#include <sstream>
 #include <string>
 
 namespace
@@ -64,73 +62,44 @@ void initialiseGmsh()
 }
 
 
-//- The background field: the cap (field capField) and, where regions
-//  are given, the minimum of it and a field per region that is the
-//  region's size inside it (Gmsh's Box, Ball and Cylinder fields) and
-//  the cap outside.
-int regionSizeFields
-(
-    const std::vector<sizeRegion>& regions,
-    double cap,
-    int capField
-)
+//- While it lives, Gmsh's mesh size is at most the size field's
+//  (hxtSizeField). Quirk: the callback is global to Gmsh, and it would
+//  outlive the field: it is removed with the guard. Its arguments changed
+//  in Gmsh 4.9 (the size Gmsh found comes last).
+class sizeCallbackGuard
 {
-    namespace field = gmsh::model::mesh::field;
-    std::vector<double> fields{double(capField)};
-    for (const sizeRegion& r : regions)
+public:
+
+    explicit sizeCallbackGuard(const ng::sizeField& sizes)
     {
-        if (!(r.size < cap))
-        {
-            continue;
-        }
-        int f = 0;
-        switch (r.type)
-        {
-            case sizeRegion::shape::box:
-                f = field::add("Box");
-                field::setNumber(f, "XMin", r.min[0]);
-                field::setNumber(f, "YMin", r.min[1]);
-                field::setNumber(f, "ZMin", r.min[2]);
-                field::setNumber(f, "XMax", r.max[0]);
-                field::setNumber(f, "YMax", r.max[1]);
-                field::setNumber(f, "ZMax", r.max[2]);
-                break;
-            case sizeRegion::shape::sphere:
-                f = field::add("Ball");
-                field::setNumber(f, "XCenter", r.centre[0]);
-                field::setNumber(f, "YCenter", r.centre[1]);
-                field::setNumber(f, "ZCenter", r.centre[2]);
-                field::setNumber(f, "Radius", r.radius);
-                break;
-            case sizeRegion::shape::cylinder:
+        const ng::sizeField* field = &sizes;
+#if GMSH_API_VERSION_MAJOR == 4 && GMSH_API_VERSION_MINOR < 9
+        gmsh::model::mesh::setSizeCallback
+        (
+            [field](int, int, double x, double y, double z)
             {
-                // Gmsh's cylinder is Center +- Axis: the half axis from
-                // the midpoint
-                const point3 mid = midPoint(r.point1, r.point2);
-                const vector3 half = 0.5*(r.point2 - r.point1);
-                f = field::add("Cylinder");
-                field::setNumber(f, "XCenter", mid[0]);
-                field::setNumber(f, "YCenter", mid[1]);
-                field::setNumber(f, "ZCenter", mid[2]);
-                field::setNumber(f, "XAxis", half[0]);
-                field::setNumber(f, "YAxis", half[1]);
-                field::setNumber(f, "ZAxis", half[2]);
-                field::setNumber(f, "Radius", r.radius);
-                break;
+                return (*field)({x, y, z});
             }
-        }
-        field::setNumber(f, "VIn", r.size);
-        field::setNumber(f, "VOut", cap);
-        fields.push_back(f);
+        );
+#else
+        gmsh::model::mesh::setSizeCallback
+        (
+            [field](int, int, double x, double y, double z, double lc)
+            {
+                return std::min(lc, (*field)({x, y, z}));
+            }
+        );
+#endif
     }
-    if (fields.size() == 1)
+
+    ~sizeCallbackGuard()
     {
-        return capField;
+        gmsh::model::mesh::removeSizeCallback();
     }
-    const int smallest = field::add("Min");
-    field::setNumbers(smallest, "FieldsList", fields);
-    return smallest;
-}
+
+    sizeCallbackGuard(const sizeCallbackGuard&) = delete;
+    sizeCallbackGuard& operator=(const sizeCallbackGuard&) = delete;
+};
 
 
 //- Gmsh's model of one partition's volume, built and read back in named
@@ -149,8 +118,6 @@ class hxtModel
     //- Gmsh's discrete surface of each shell
     std::vector<int> shellSurface_;
     std::vector<std::size_t> tagOfPoint_;
-    //- The interior size cap, as Gmsh's MathEval field reads it
-    std::ostringstream cap_;
     //- Gmsh's nodes, and the index in the mesh of each node tag
     std::vector<std::size_t> nodeTags_;
     std::vector<double> coords_, parametric_;
@@ -239,26 +206,16 @@ public:
         // VolumeMesher::mesh catches it and meshVolumeWithFallbacks retries
         // with one thread
         gmsh::option::setNumber("General.NumThreads", parameters.threads);
-        // Interior size grows from the surface edge lengths, as Netgen's,
-        // capped at the fine size (Netgen's maxh) by a constant background
-        // field. Partition interfaces are refined coarse interior faces,
-        // whose edges are up to 3x the fine size: without the cap_, cells
-        // near them would be coarser than in a serial run of the same case.
-        // (The cap_ at 1.2x the fine size, which matches Netgen's serial cell
-        // count better, gave 25-35% fewer cells on 2-4 ranks than on one;
-        // at 1x the count varies by under 10% with the number of ranks.)
-        // Quirk: the same cap_ as Mesh.MeshSizeMax makes Gmsh 4.8.4 crash
-        // (SIGSEGV in hxtRefineTetrahedra) whenever it lies below the longer
-        // surface edges, which partition interfaces always have; the field
-        // gives the same sizes without the crash.
+        // Interior size grows from the surface edge lengths, held to the
+        // size field (sizeCallbackGuard). Partition interfaces are refined
+        // coarse interior faces, whose edges are up to 3x the fine size:
+        // the field's cap keeps cells near them no coarser than in a serial
+        // run of the same case. Quirk: the cap as Mesh.MeshSizeMax makes
+        // Gmsh 4.8.4 crash (SIGSEGV in hxtRefineTetrahedra) whenever it lies
+        // below the longer surface edges, which partition interfaces always
+        // have; a size field or callback gives the same sizes without the
+        // crash.
         gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
-        const int sizeField = gmsh::model::mesh::field::add("MathEval");
-        cap_ << std::setprecision(17) << parameters.maxCellSize;
-        gmsh::model::mesh::field::setString(sizeField, "F", cap_.str());
-        gmsh::model::mesh::field::setAsBackgroundMesh
-        (
-            regionSizeFields(parameters.regions, parameters.maxCellSize, sizeField)
-        );
         // For HXT, Mesh.Optimize is HXT's own optimiser (Gmsh's is skipped):
         // it costs little and takes the worst faces from about 80 to 65
         // degrees; the quality pass does the rest (bench/results/quality.md)
@@ -374,6 +331,8 @@ pmsh::TetMesh pmsh::gmshModelMesh
         model.addVolumes();
         model.setMeshingOptions(parameters);
 
+        const ng::sizeField sizes = hxtSizeField(surfacePoints, surfaceTriangles, parameters);
+        const sizeCallbackGuard sizeGuard(sizes);
         gmsh::model::mesh::generate(3);
         reportMeshingStep("Gmsh HXT: reading the mesh back");
 

@@ -344,27 +344,27 @@ double hxtCpuAllowance(std::size_t nPoints)
 }
 
 
-//- What HXT's size callback reads: the sizes, and the points so far
+//- What HXT's size callback reads: the size field, and the points so far
 struct sizeCallbackData
 {
-    const volumeMeshParameters* parameters;
+    const ng::sizeField* sizes;
     std::atomic<std::size_t> nPoints;
 };
 
 
 //- HXT's size callback: each new point's size is the one HXT interpolated
-//  from the surface, at most the interior size there (as Gmsh does with
-//  Mesh.MeshSizeExtendFromBoundary and its background field). HXT calls
-//  it once per refinement round: the sign of progress its parent waits for
+//  from the surface, at most the size field's there (as Gmsh does with
+//  Mesh.MeshSizeExtendFromBoundary and a background field). HXT calls it
+//  once per refinement round: the sign of progress its parent waits for
 hxtStatus interiorSizes(double* coord, uint32_t*, size_t n, void* data)
 {
     sizeCallbackData& d = *static_cast<sizeCallbackData*>(data);
     expectProgressWithin(hxtCpuAllowance(d.nPoints += n));
-    const volumeMeshParameters& parameters = *d.parameters;
+    const ng::sizeField& sizes = *d.sizes;
     for (size_t i = 0; i < n; ++i)
     {
         double* x = coord + 4*i;
-        const double cap = hxtInteriorSize(parameters, {x[0], x[1], x[2]});
+        const double cap = sizes({x[0], x[1], x[2]});
         x[3] = x[3] > 0 ? std::min(x[3], cap) : cap;
     }
     return 0;
@@ -504,7 +504,8 @@ pmsh::TetMesh pmsh::hxtLibraryMesh
     options.refine = 1;
     options.optimize = parameters.optimisationSteps > 0;
     options.quality.min = hxtOptimiserThreshold;
-    sizeCallbackData sizes{&parameters, {surfacePoints.size()}};
+    const ng::sizeField sizeField = hxtSizeField(surfacePoints, surfaceTriangles, parameters);
+    sizeCallbackData sizes{&sizeField, {surfacePoints.size()}};
     options.nodalSizes.callback = interiorSizes;
     options.nodalSizes.userData = &sizes;
     options.nodalSizes.max = 1e22;

@@ -117,6 +117,7 @@ pmsh::qualityPassStats pmsh::improveWorstCells
 )
 {
     qualityPass::passMesh m(mesh, nFixedPoints, triangles, interface);
+    m.flatWallCellsCount = true;
     const qualityPassStats all = runSteps(m, steps, 0, qualityPass::visitBadness, true);
     // Then the worst faces alone (the counts in m run on), with a point
     // where neither flips nor smoothing mend them
@@ -125,6 +126,7 @@ pmsh::qualityPassStats pmsh::improveWorstCells
     runSteps(m, qualityPass::worstFaceSteps, 0, qualityPass::worstFaceBadness, false);
     const label insertedAtWorstFaces = m.nInserted - insertedBefore;
     m.insertAbove = qualityPass::infinite;
+    m.flatWallCellsCount = false;
     // Last, what checkMesh would still reject, as removeSlivers does (a
     // point inserted where no flip or move mends it): with one step, a
     // sphere partition of 2.3M cells kept a sliver of aspect ratio 1.5e10,

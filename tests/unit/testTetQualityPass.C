@@ -11,6 +11,8 @@
 #include "surfaceRefinement.H"
 #include "testMeshers.H"
 #include "testPaths.H"
+#include "wallCells.H"
+#include "qualityPassMeasures.H"
 
 #include <gtest/gtest.h>
 
@@ -251,6 +253,50 @@ TEST(tetQualityPass, movesABadInteriorPointAndKeepsTheBoundary)
     const double worstAfter = checkMeshMeasuresOf(m).maxNonOrthogonality;
     EXPECT_LT(worstAfter, worstBefore - 10) << "from " << worstBefore;
     EXPECT_NEAR(stats.worstBefore.nonOrthogonality, worstBefore, 1e-9);
+}
+
+
+TEST(tetQualityPass, liftsAnInteriorPointThatSitsJustAboveTheWall)
+{
+    // The cube as the star of a point 4 % of an edge above its bottom: the
+    // two tets on the bottom are flat cells on the wall, a tenth as high
+    // as their faces are wide, which checkMesh passes (their boundary
+    // faces' non-orthogonality is 25 degrees at most) and on which
+    // simpleFoam diverged (HXT's sphereDrag mesh)
+    TetMesh m = cubeStar({0.5, 0.45, 0.04});
+    const std::vector<triVerts> triangles = cubeTriangles();
+    const std::vector<point3> before = m.points;
+    ASSERT_LT(test::flattestWallCell(m, triangles), 0.05);
+
+    improveWorstCells(m, 8, triangles, {}, 1);
+
+    expectValid(m, before, 8, triangles);
+    EXPECT_GT(test::flattestWallCell(m, triangles), 0.2);
+}
+
+
+TEST(tetQualityPass, countsAFlatCellOnTheWallAsBadAsAFaceOf55Degrees)
+{
+    // An equilateral wall face of edge 1 and the fourth point of its cell
+    // above its centre: its boundary face's non-orthogonality and
+    // skewness are 0 at any height, so only the height tells a flat cell
+    using namespace qualityPass;
+    const point3 a{0, 0, 0};
+    const point3 b{1, 0, 0};
+    const point3 c{0.5, std::sqrt(3.0)/2, 0};
+    const point3 centre = (1.0/3.0)*(a + b + c);
+    auto badnessAt = [&](double height, bool flatCounts)
+    {
+        const point3 d = centre + point3{0, 0, -height};
+        return badness(boundaryMeasure(a, b, c, d, flatCounts), false);
+    };
+    EXPECT_GT(badnessAt(0.04, true), worstFaceBadness);
+    EXPECT_NEAR(badnessAt(0.999999*wallHeight, true), 1, 1e-5) << "as bad as a 55-degree face";
+    EXPECT_NEAR(badnessAt(wallHeight/1.1, true), 1.21, 1e-6);
+    EXPECT_NEAR(badnessAt(0.29, true), sqr(wallHeight/0.29), 1e-6) << "visited";
+    EXPECT_LT(badnessAt(0.31, true), 1e-20) << "below the visiting threshold";
+    EXPECT_LT(badnessAt(std::sqrt(2.0/3.0), true), 1e-20) << "a regular tet";
+    EXPECT_LT(badnessAt(0.04, false), 1e-20) << "sliver removal alone: not counted";
 }
 
 
