@@ -95,22 +95,26 @@ pmsh::ng::sizeField pmsh::hxtSizeField
 )
 {
     // Netgen's tree, with two shares that make HXT's cells come out as
-    // Netgen's do (sphereDrag, bench/results/size-grading.md): HXT's edges
-    // are about 1.3 times the size it is given where the size is capped
-    // (the far field, the regions), and Netgen's cells grow at about 0.6
-    // of its tree's grading (its advancing front sizes each new cell by
-    // the front's faces too). With grading and caps as Netgen's tree has
-    // them, HXT's edges were 1.1-1.4 times Netgen's 0.05-8 from the ball;
-    // with these shares 0.89-1.08 times.
+    // Netgen's do (bench/results/size-grading.md):
+    // - Netgen's cells grow at about 0.6 of its tree's grading away from a
+    //   body (its advancing front sizes each new cell by the front's faces
+    //   too): with the tree's grading, HXT's edges were 1.1-1.3 times
+    //   Netgen's 0.1-1.5 from sphereDrag's ball;
+    // - inside a refinement region HXT's edges come out about 1.3 times
+    //   the region's size, Netgen's at about its size (sphereDrag's wake).
+    // Where maxCellSize holds alone, both make edges of about 1.35 times
+    // it: the sphere tutorial (maxCellSize 0.1, r = 1) gets 124k cells from
+    // HXT, 129k from Netgen. A share on maxCellSize too made HXT's 2.1
+    // times Netgen's there.
     constexpr double gradingShare = 0.6;
-    constexpr double capShare = 0.75;
+    constexpr double regionShare = 0.75;
     ng::meshParameters sizes;
-    sizes.maxh = capShare*parameters.maxCellSize;
+    sizes.maxh = parameters.maxCellSize;
     sizes.grading = gradingShare*parameters.grading;
     sizes.regions = parameters.regions;
     for (sizeRegion& r : sizes.regions)
     {
-        r.size *= capShare;
+        r.size *= regionShare;
     }
     return ng::sizeField(surfacePoints, surfaceTriangles, sizes);
 }

@@ -61,6 +61,25 @@ class sphereDrag(CaseTest):
             cells = cells_in_checkmesh_log(f.read())
         self.assertLessEqual(cells, 155500, "the 3 % must hold at no more than 155k cells")
 
+    def test_hxtMeshConvergesWithTheShippedSchemes(self):
+        """The same case with volumeMesher hxt, the fast mesher: simpleFoam
+        with the tutorial's own schemes converges on it (Cd settles), and
+        Cd is within 5 % of the reference. HXT's mesh of this dictionary
+        diverged (Cd -183 at iteration 100, a floating-point exception
+        later): its interior sizes jumped away from the ball and left
+        interior points a tenth of a cell above the wall
+        (bench/results/hxt-divergence.md). It now gives +3.5 % at 194k
+        cells; Netgen's +1.3 % (the 3 % of the Allrun is not yet met)."""
+        c = self.case("sphereDrag", volumeMesher="hxt")
+        c.run("pmshFoam", np=2)
+        c.check_mesh(np=2)
+        code, log = c.run("simpleFoam", np=2, check=False)
+        self.assertEqual(code, 0, "simpleFoam failed (diverged?):\n" + log[-3000:])
+        self.assertIn("CdSettled condition satisfied", log)
+        iterations, last = self.coefficients(c)[-1]
+        self.assertLess(iterations, 1000, "stopped at endTime, not when Cd settled")
+        self.assertLess(abs(last - REFERENCE_CD) / REFERENCE_CD, 0.05, "Cd %g" % last)
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)
