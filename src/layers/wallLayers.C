@@ -1,5 +1,5 @@
 #include "wallLayers.H"
-#include "liftedCrossings.H"
+#include "triangleCrossings.H"
 #include "triangleGrid.H"
 #include "layerStars.H"
 
@@ -97,7 +97,7 @@ struct layerState
     }
 
     //- Per triangle, what it crosses once every point is at its top level
-    //  and the interface has risen (liftedCrossings.H).
+    //  and the interface has risen (triangleCrossings.H).
     std::vector<label> crossings() const
     {
         const auto& triangles = stars.surface().triangles;
@@ -115,7 +115,7 @@ struct layerState
                     || (!layers.shift.empty() && magSqr(layers.shift[p]) > 0);
             }
         }
-        return liftedCrossings(lifted, triangles, moved);
+        return crossingTriangles(lifted, triangles, moved);
     }
 
     //- Whether, on any rank, a triangle crosses one with which it has no

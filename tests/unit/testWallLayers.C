@@ -12,7 +12,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "wallLayers.H"
-#include "liftedCrossings.H"
+#include "triangleCrossings.H"
 #include "meshPatch.H"
 
 #include <gtest/gtest.h>
@@ -423,14 +423,14 @@ TEST(wallLayers, stackTopsDoNotRunThroughAnUnlayeredCeilingCloserThanTheStack)
         for (label p : s.triangles[t]) moved[t] = moved[t] || layers.nLayers[p] > 0;
     }
     EXPECT_LT(highestTop, g);
-    const std::vector<label> crossing = liftedCrossings(lifted, s.triangles, moved);
+    const std::vector<label> crossing = crossingTriangles(lifted, s.triangles, moved);
     EXPECT_EQ(std::count(crossing.begin(), crossing.end(), 0), label(crossing.size()));
     EXPECT_GT(layers.stats.nInvalidLimited, 0);
     expectValidPrisms(s, layers);
 }
 
 
-TEST(liftedCrossings, findsASegmentThroughATriangleAndNotBesideOrAtItsEnds)
+TEST(triangleCrossings, findsASegmentThroughATriangleAndNotBesideOrAtItsEnds)
 {
     const point3 p{0, 0, 0}, q{1, 0, 0}, r{0, 1, 0};
     EXPECT_TRUE(segmentCrossesTriangle({0.2, 0.2, -1}, {0.2, 0.2, 1}, p, q, r));
@@ -441,7 +441,7 @@ TEST(liftedCrossings, findsASegmentThroughATriangleAndNotBesideOrAtItsEnds)
 
     // Two triangles sharing no point, one through the other; and apart
     const std::vector<point3> x{p, q, r, {0.2, 0.2, -1}, {0.3, 0.2, 1}, {0.2, 0.3, 1}, {5, 5, 5}};
-    const std::vector<label> crossing = liftedCrossings
+    const std::vector<label> crossing = crossingTriangles
     (
         x, {{0, 1, 2}, {3, 4, 5}, {6, 4, 5}}, {true, false, false}
     );
@@ -939,7 +939,7 @@ TEST(wallLayers, interfaceCloserThanTheLayersRisesWithThemInsteadOfThinningThem)
             if (s.region[t] >= 0) continue;
             EXPECT_GE(liftedAreaShare(s, split[r], t), 0.25) << "interface triangle " << t << " of part " << r;
         }
-        const std::vector<label> crossing = liftedCrossings(lifted, s.triangles, moved);
+        const std::vector<label> crossing = crossingTriangles(lifted, s.triangles, moved);
         EXPECT_EQ(std::count(crossing.begin(), crossing.end(), 0), label(crossing.size())) << "part " << r;
         const layerBits partBits(s, split[r]);
         for (const auto& [id, bits] : partBits.points)

@@ -1,4 +1,4 @@
-#include "liftedCrossings.H"
+#include "triangleCrossings.H"
 #include "triangleGrid.H"
 
 #include <algorithm>
@@ -68,18 +68,18 @@ bool segmentCrossesTriangle
 }
 
 
-std::vector<label> liftedCrossings
+std::vector<label> crossingTriangles
 (
     const std::vector<point3>& points,
     const std::vector<triVerts>& triangles,
-    const std::vector<bool>& moved
+    const std::vector<bool>& tested
 )
 {
     std::vector<label> crossing(triangles.size(), 0);
     const triangleGrid grid(points, triangles, gridCell(points, triangles));
     for (label t = 0; t < label(triangles.size()); ++t)
     {
-        if (!moved[t]) continue;
+        if (!tested[t]) continue;
         const box3 bt = boxOf(points, triangles[t]);
         grid.near(bt, [&](label u)
         {
