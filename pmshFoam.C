@@ -83,6 +83,7 @@ Usage
 #include "stageParameters.H"
 #include "stageReports.H"
 #include "stageLog.H"
+#include "surfaceCrossings.H"
 #include "surfaceRefinement.H"
 #include "writeRankMesh.H"
 
@@ -286,13 +287,16 @@ static void meshCase
     const std::vector<pmsh::point3> lifted = pmsh::liftedSurfacePoints(layers, surface.points);
     pmsh::failTogether(comm, [&]
     {
+        const std::vector<pmsh::point3>& points = lifted.empty() ? surface.points : lifted;
+        const std::string failedSurface = pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank());
+        pmsh::checkSurfaceCrossings(points, surface, coarse.patches, comm.rank(), failedSurface);
         volume = pmsh::meshVolumeByZone
         (
             pmsh::VolumeMesher::NewAll(settings.volumeMesher),
-            lifted.empty() ? surface.points : lifted,
+            points,
             surface.triangles, surface.zone, coarse.zones,
             pmsh::volumeParameters(settings, surface, comm.rank()),
-            pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank()),
+            failedSurface,
             "Try a smaller maxCellSize (a finer coarse mesh) or another"
             " volumeMesher in system/pmshDict."
         );

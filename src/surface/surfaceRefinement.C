@@ -341,13 +341,7 @@ pmsh::FineSurface pmsh::refinePartSurface
                 {
                     const label region = partSurface.region[facei];
                     where = "at " + str((1.0/3.0)*(a + b + c)) + " on "
-                      + (
-                            isBetweenZones(region)
-                          ? std::string("a face between two zones")
-                          : isInterfaceRegion(region)
-                          ? "the interface with part " + std::to_string(-region - 1)
-                          : "patch " + coarse.patches[region].name
-                        );
+                      + regionDescription(region, coarse.patches);
                 }
             }
         }

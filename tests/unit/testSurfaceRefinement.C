@@ -7,10 +7,15 @@
 #include "surfaceChecks.H"
 #include "testPaths.H"
 #include "pmshError.H"
+#include "surfaceCrossings.H"
+#include "testMeshers.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <cstring>
 #include <map>
 #include <set>
@@ -516,4 +521,93 @@ TEST(surfaceRefinement, thinBodyWhoseSurfaceFoldsOntoItselfAcrossCoarseEdgesIsRe
     // A few points, off by less than the needle's radius
     EXPECT_LT(repaired.repair.nPointsOff, 20);
     EXPECT_LT(repaired.repair.maxDistance, 0.03);
+}
+
+
+// * * * * * * * * * * * Surfaces crossing before stage 4  * * * * * * * * * //
+
+namespace
+{
+
+//- Icospheres of radius 1 as one partition surface, each on its own patch
+//  ("ball0", "ball1", ...), centred at `centres`
+FineSurface icospheresAt(const std::vector<point3>& centres, std::vector<meshPatch>& patches)
+{
+    FineSurface s;
+    patches.clear();
+    for (std::size_t k = 0; k < centres.size(); ++k)
+    {
+        const closedSurface ball = icosphere(2);
+        const label offset = label(s.points.size());
+        for (const point3& p : ball.points) s.points.push_back(p + centres[k]);
+        for (const triVerts& t : ball.triangles)
+        {
+            s.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+            s.region.push_back(label(k));
+            s.zone.push_back(0);
+        }
+        meshPatch patch;
+        patch.name = "ball" + std::to_string(k);
+        patches.push_back(patch);
+    }
+    return s;
+}
+
+} // End anonymous namespace
+
+
+TEST(surfaceCrossings, aClosedSurfaceThatCrossesNothingPasses)
+{
+    std::vector<meshPatch> patches;
+    const FineSurface s = icospheresAt({{0, 0, 0}, {3, 0, 0}}, patches);
+    const tempDir dir("crossings");
+    EXPECT_NO_THROW(checkSurfaceCrossings(s.points, s, patches, 0, dir/"failed.stl"));
+    EXPECT_FALSE(std::filesystem::exists(dir/"failed.stl"));
+}
+
+
+TEST(surfaceCrossings, twoShellsThroughEachOtherStopWithThePlaceAndThePatches)
+{
+    // What HXT refused on the bullet's partition at r = 2 ("failed to
+    // recover constrained lines/triangles") and Netgen too ("boundary mesh
+    // is overlapping"), four attempts later
+    std::vector<meshPatch> patches;
+    const FineSurface s = icospheresAt({{0, 0, 0}, {1, 0, 0}}, patches);
+    const tempDir dir("crossings");
+    const std::string m = errorOf([&]
+    {
+        checkSurfaceCrossings(s.points, s, patches, 3, dir/"failed.stl");
+    });
+    EXPECT_HAS(m, "The surface of partition 3 crosses itself");
+    EXPECT_HAS(m, "on patch ball0, through a triangle on patch ball1");
+    EXPECT_HAS(m, "reduce maxCellSize");
+    EXPECT_HAS(m, dir/"failed.stl");
+    EXPECT_TRUE(std::filesystem::exists(dir/"failed.stl"));
+    // The place named lies where the spheres cross: x = 0.5, radius 0.87
+    const std::size_t at = m.find(" at (");
+    ASSERT_NE(at, std::string::npos);
+    double x = 0, y = 0, z = 0;
+    ASSERT_EQ(std::sscanf(m.c_str() + at, " at (%lf %lf %lf)", &x, &y, &z), 3) << m;
+    EXPECT_NEAR(x, 0.5, 0.2);
+    EXPECT_NEAR(std::hypot(y, z), std::sqrt(0.75), 0.2);
+}
+
+
+TEST(surfaceCrossings, aCrossingOfLiftedPointsAsksForThinnerLayers)
+{
+    // Two balls apart, the second's points lifted (as stage 3b lifts a
+    // wall's points to its layers' tops) into the first
+    std::vector<meshPatch> patches;
+    const FineSurface s = icospheresAt({{0, 0, 0}, {2.5, 0, 0}}, patches);
+    std::vector<point3> lifted = s.points;
+    for (std::size_t p = s.points.size()/2; p < s.points.size(); ++p)
+    {
+        lifted[p][0] -= 1.5;
+    }
+    const tempDir dir("crossings");
+    EXPECT_FATAL
+    (
+        checkSurfaceCrossings(lifted, s, patches, 0, dir/"failed.stl"),
+        "The tops of the prism layers cross there"
+    );
 }
