@@ -260,9 +260,12 @@ TEST(tetQualityPass, liftsAnInteriorPointThatSitsJustAboveTheWall)
 {
     // The cube as the star of a point 4 % of an edge above its bottom: the
     // two tets on the bottom are flat cells on the wall, a tenth as high
-    // as their faces are wide, which checkMesh passes (their boundary
-    // faces' non-orthogonality is 25 degrees at most) and on which
-    // simpleFoam diverged (HXT's sphereDrag mesh)
+    // as their faces are wide, of the kind simpleFoam diverged on (HXT's
+    // sphereDrag mesh). One step lifts the point off the wall. (Here the
+    // faces round the point lean badly too, so the pass lifted it before
+    // flat wall cells counted; countsAFlatCellOnTheWallAsBadAsAFaceOf55Degrees
+    // and hxtVolumeMesher.leavesNoCellFlatAgainstTheBodyOfABodyInAFarField
+    // are the tests that fail without the wall rule.)
     TetMesh m = cubeStar({0.5, 0.45, 0.04});
     const std::vector<triVerts> triangles = cubeTriangles();
     const std::vector<point3> before = m.points;
