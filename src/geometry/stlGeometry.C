@@ -22,15 +22,7 @@ namespace
 //- The length of the diagonal of the points' bounding box.
 double boundingBoxDiagonal(const std::vector<point3>& points)
 {
-    point3 lo = points[0], hi = points[0];
-    for (const point3& p : points)
-    {
-        for (int k = 0; k < 3; ++k)
-        {
-            lo[k] = std::min(lo[k], p[k]);
-            hi[k] = std::max(hi[k], p[k]);
-        }
-    }
+    const auto [lo, hi] = boundingBox(points);
     return std::sqrt(magSqr(hi - lo));
 }
 

@@ -16,20 +16,7 @@ namespace ng
 
 double boundingBoxDiagonal(const std::vector<pmsh::point3>& points)
 {
-    if (points.empty())
-    {
-        return 0;
-    }
-    pmsh::point3 lo = points[0];
-    pmsh::point3 hi = points[0];
-    for (const auto& p : points)
-    {
-        for (int k = 0; k < 3; ++k)
-        {
-            lo[k] = std::min(lo[k], p[k]);
-            hi[k] = std::max(hi[k], p[k]);
-        }
-    }
+    const auto [lo, hi] = pmsh::boundingBox(points);
     return std::sqrt(pmsh::magSqr(hi - lo));
 }
 

@@ -66,9 +66,10 @@ std::string secondsString(double seconds)
 namespace
 {
 
-//- restrictLocalSizes' samples, each given to setH(point, size)
-template<class SetH>
-void restrictAtSamples(const netgen::Box<3>& box, const meshParameters& p, SetH setH)
+//- restrictLocalSizes' samples, each given to setH(point, size); the
+//  tree's box (treeBox()) is asked for only when there are regions
+template<class TreeBox, class SetH>
+void restrictAtSamples(const meshParameters& p, TreeBox treeBox, SetH setH)
 {
     using namespace pmsh;
     for (const sizePoint& s : p.sizePoints)
@@ -78,6 +79,11 @@ void restrictAtSamples(const netgen::Box<3>& box, const meshParameters& p, SetH 
             setH(s.p, s.size);
         }
     }
+    if (p.regions.empty())
+    {
+        return;
+    }
+    const netgen::Box<3>& box = treeBox();
     const point3 lo{box.PMin()(0), box.PMin()(1), box.PMin()(2)};
     const point3 hi{box.PMax()(0), box.PMax()(1), box.PMax()(2)};
     for (const sizeRegion& r : p.regions)
@@ -96,7 +102,8 @@ void restrictLocalSizes(netgen::Mesh& mesh, const meshParameters& p)
 {
     restrictAtSamples
     (
-        mesh.LocalHFunction().GetBoundingBox(), p,
+        p,
+        [&]() -> const netgen::Box<3>& { return mesh.LocalHFunction().GetBoundingBox(); },
         [&](const point3& x, double h)
         {
             mesh.RestrictLocalH(netgen::Point3d(x[0], x[1], x[2]), h);
@@ -111,7 +118,8 @@ void restrictLocalSizes(netgen::LocalH& tree, const meshParameters& p)
     // pmshFoam sets none)
     restrictAtSamples
     (
-        tree.GetBoundingBox(), p,
+        p,
+        [&]() -> const netgen::Box<3>& { return tree.GetBoundingBox(); },
         [&](const point3& x, double h)
         {
             tree.SetH(netgen::Point<3>(x[0], x[1], x[2]), h);

@@ -46,16 +46,7 @@ pmsh::ng::sizeField::sizeField
         return;
     }
 
-    point3 lo = points[0];
-    point3 hi = points[0];
-    for (const point3& p : points)
-    {
-        for (int k = 0; k < 3; ++k)
-        {
-            lo[k] = std::min(lo[k], p[k]);
-            hi[k] = std::max(hi[k], p[k]);
-        }
-    }
+    const auto [lo, hi] = boundingBox(points);
 
     std::lock_guard<std::mutex> lock(netgenMutex);
     impl_->tree.reset
