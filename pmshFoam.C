@@ -16,10 +16,13 @@ Description
     Netgen mesh of a CSG (.geo) or STL geometry, a partition of it by the
     decomposition method of system/decomposeParDict (metis by default),
     r levels of refinement of each partition's surface with projection onto
-    the geometry, volume remeshing of each partition (Netgen or HXT), and
-    global point numbering through integer barycentric ids (no
-    floating-point matching); then whole fine cells move between ranks
-    until every rank has its share. Several CSG top-level solids become
+    the geometry, prism layers grown on the walls that ask for them (the
+    volume mesher fills the surface lifted to their tops), volume remeshing
+    of each partition (Netgen or HXT, each attempt in a child process of
+    its rank, so that a mesher's crash is a failed attempt that is retried
+    another way), and global point numbering through integer barycentric
+    ids (no floating-point matching); then whole fine cells move between
+    ranks until every rank has its share. Several CSG top-level solids become
     cellZones, the surfaces between them faceZones (splitMeshRegions
     -cellZones makes regions of them).
 
@@ -75,7 +78,7 @@ Usage
 #include "meshSettings.H"
 #include "partitionCoarseMesh.H"
 #include "partitionVolume.H"
-#include "childProcess.H"
+#include "mesherChild.H"
 #include "processSettings.H"
 #include "patchTypes.H"
 #include "runSummary.H"
@@ -349,7 +352,7 @@ static void meshCase
 
 int main(int argc, char *argv[])
 {
-    // A volume mesher's fresh process (src/volume/childProcess.H): nothing
+    // A volume mesher's fresh process (src/volume/mesherChild.H): nothing
     // of OpenFOAM's or MPI's runs there
     if (argc > 1 && std::strcmp(argv[1], pmsh::mesherChildOption) == 0)
     {

@@ -28,6 +28,44 @@ pmsh::procAddressingStarts pmsh::procAddressingStartsOf
 }
 
 
+namespace
+{
+
+//- Step 3 of buildProcAddressing: on each processor patch to a lower rank,
+//  the faces take that rank's numbers, negated (reversed orientation)
+void takeLowerRanksFaceNumbers
+(
+    const pmsh::Communicator& comm,
+    const pmsh::tetPolyMesh& mesh,
+    std::vector<pmsh::label>& faceNumbers
+)
+{
+    using namespace pmsh;
+    const int me = comm.rank();
+    std::vector<std::vector<label>> numbersToHigher(comm.size());
+    for (const meshPatch& p : mesh.patches)
+    {
+        if (!p.isProcessor() || p.neighbProcNo < me) continue;
+        for (label f = p.start; f < p.start + p.size; ++f)
+        {
+            numbersToHigher[p.neighbProcNo].push_back(faceNumbers[f]);
+        }
+    }
+    const auto fromLower = comm.exchange(numbersToHigher);
+    for (const meshPatch& p : mesh.patches)
+    {
+        if (!p.isProcessor() || p.neighbProcNo > me) continue;
+        const std::vector<label>& numbers = fromLower[p.neighbProcNo];
+        for (label i = 0; i < p.size; ++i)
+        {
+            faceNumbers[p.start + i] = -numbers[i];
+        }
+    }
+}
+
+} // End anonymous namespace
+
+
 pmsh::procAddressing pmsh::buildProcAddressing
 (
     const Communicator& comm,
@@ -145,25 +183,7 @@ pmsh::procAddressing pmsh::buildProcAddressing
     }
 
     // 3. The higher rank takes the lower rank's numbers, reversed
-    std::vector<std::vector<label>> numbersToHigher(nRanks);
-    for (const meshPatch& p : mesh.patches)
-    {
-        if (!p.isProcessor() || p.neighbProcNo < me) continue;
-        for (label f = p.start; f < p.start + p.size; ++f)
-        {
-            numbersToHigher[p.neighbProcNo].push_back(addr.face[f]);
-        }
-    }
-    const auto fromLower = comm.exchange(numbersToHigher);
-    for (const meshPatch& p : mesh.patches)
-    {
-        if (!p.isProcessor() || p.neighbProcNo > me) continue;
-        const std::vector<label>& numbers = fromLower[p.neighbProcNo];
-        for (label i = 0; i < p.size; ++i)
-        {
-            addr.face[p.start + i] = -numbers[i];
-        }
-    }
+    takeLowerRanksFaceNumbers(comm, mesh, addr.face);
 
     // 4. Physical patches: rank by rank within each patch
     for (std::size_t k = 0; k < physicalParts.size(); ++k)

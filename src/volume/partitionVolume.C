@@ -1,5 +1,6 @@
 #include "partitionVolume.H"
-#include "childProcess.H"
+#include "childWatchdog.H"
+#include "mesherChild.H"
 #include "tetShape.H"
 #include "pmshError.H"
 #include "retryLadder.H"
@@ -30,50 +31,11 @@ std::string describe(const ladderAttempt<volumeAttempt>& a)
     return a.parameters.mesher->name() + (a.change.empty() ? "" : "; " + a.change);
 }
 
-} // End anonymous namespace
-
-
-void pmsh::writeSurfaceStl
-(
-    const std::string& fileName,
-    const std::string& solidName,
-    const std::vector<point3>& points,
-    const std::vector<triVerts>& triangles
-)
-{
-    const std::filesystem::path path(fileName);
-    if (path.has_parent_path())
-    {
-        std::filesystem::create_directories(path.parent_path());
-    }
-    std::ofstream os(fileName);
-    os  << std::setprecision(17) << "solid " << solidName << '\n';
-    for (const triVerts& t : triangles)
-    {
-        const vector3 n = cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]);
-        const double mag = std::sqrt(magSqr(n));
-        const double s = mag > 0 ? 1/mag : 0;
-        os  << "  facet normal " << s*n[0] << ' ' << s*n[1] << ' ' << s*n[2] << '\n'
-            << "    outer loop\n";
-        for (label p : t)
-        {
-            os  << "      vertex " << points[p][0] << ' ' << points[p][1] << ' '
-                << points[p][2] << '\n';
-        }
-        os  << "    endloop\n  endfacet\n";
-    }
-    os  << "endsolid " << solidName << '\n';
-}
-
-
-pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
+//- The ladder's attempts for a partition, first as asked
+std::vector<ladderAttempt<volumeAttempt>> volumeAttempts
 (
     const std::vector<std::unique_ptr<VolumeMesher>>& meshers,
-    const std::vector<point3>& surfacePoints,
-    const std::vector<triVerts>& surfaceTriangles,
-    const volumeMeshParameters& parameters,
-    const std::string& failedSurfaceFile,
-    const std::string& advice
+    const volumeMeshParameters& parameters
 )
 {
     // The attempts, in order: as asked; single-threaded; with the
@@ -135,6 +97,57 @@ pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
             "the " + meshers[m]->name() + " backend" + (stepsAsked ? "" : ", " + stepsAdded)
         );
     }
+    return attempts;
+}
+
+} // End anonymous namespace
+
+
+void pmsh::writeSurfaceStl
+(
+    const std::string& fileName,
+    const std::string& solidName,
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles
+)
+{
+    const std::filesystem::path path(fileName);
+    if (path.has_parent_path())
+    {
+        std::filesystem::create_directories(path.parent_path());
+    }
+    std::ofstream os(fileName);
+    os  << std::setprecision(17) << "solid " << solidName << '\n';
+    for (const triVerts& t : triangles)
+    {
+        const vector3 n = cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]);
+        const double mag = std::sqrt(magSqr(n));
+        const double s = mag > 0 ? 1/mag : 0;
+        os  << "  facet normal " << s*n[0] << ' ' << s*n[1] << ' ' << s*n[2] << '\n'
+            << "    outer loop\n";
+        for (label p : t)
+        {
+            os  << "      vertex " << points[p][0] << ' ' << points[p][1] << ' '
+                << points[p][2] << '\n';
+        }
+        os  << "    endloop\n  endfacet\n";
+    }
+    os  << "endsolid " << solidName << '\n';
+}
+
+
+pmsh::partitionVolumeResult pmsh::meshVolumeWithFallbacks
+(
+    const std::vector<std::unique_ptr<VolumeMesher>>& meshers,
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
+    const volumeMeshParameters& parameters,
+    const std::string& failedSurfaceFile,
+    const std::string& advice
+)
+{
+    const std::vector<ladderAttempt<volumeAttempt>> attempts =
+        volumeAttempts(meshers, parameters);
 
     // Each failure as a line of the error (and of the log, if a later
     // attempt succeeds)

@@ -1,7 +1,7 @@
 #include "layerStage.H"
+#include "coarseWallGap.H"
 #include "mpiLayerExchange.H"
 #include "pmshError.H"
-#include "triangleGrid.H"
 
 #include "streamManip.H"
 
@@ -17,69 +17,6 @@ namespace
 {
 
 const char* const where = "pmsh::layerStage";
-
-
-//- The kernel's gap query over the coarse boundary and the faces between
-//  zones: the coarse mesh is the same on every rank, so every rank gets the
-//  same answer for the same ray (the fine wall of another part is not
-//  there to ask). Only rays up to `reach` matter (the thickest stack over
-//  its gap ratio): the triangles are binned in a grid of cells of that
-//  size, and a ray visits the few cells of its segment's box. A boundary
-//  triangle counts only when the ray leaves the domain through it: the
-//  coarse chords of the point's own concave wall lie just in front of it,
-//  seen from behind.
-class coarseWallGap
-{
-public:
-
-    coarseWallGap(const CoarseMesh& coarse, double reach)
-    :
-        points_(coarse.points),
-        reach_(reach),
-        triangles_(trianglesOf(coarse)),
-        grid_(points_, triangles_, reach)
-    {}
-
-    double operator()(const point3& origin, const vector3& d, double skip) const
-    {
-        const point3 end = origin + reach_*d;
-        box3 segment{origin, origin};
-        for (int k = 0; k < 3; ++k)
-        {
-            segment.lo[k] = std::min(origin[k], end[k]);
-            segment.hi[k] = std::max(origin[k], end[k]);
-        }
-        double nearest = std::numeric_limits<double>::infinity();
-        grid_.near(segment, [&](label i)
-        {
-            const triVerts& f = triangles_[i];
-            const point3& p = points_[f[0]];
-            const bool boundary = i < nBoundary_;
-            if (boundary && dot(cross(points_[f[1]] - p, points_[f[2]] - p), d) <= 0) return;
-            const double t = rayTriangle(origin, d, p, points_[f[1]], points_[f[2]]);
-            if (t > skip && t <= reach_) nearest = std::min(nearest, t);
-        });
-        return nearest;
-    }
-
-private:
-
-    //- The boundary faces, then the faces between zones
-    std::vector<triVerts> trianglesOf(const CoarseMesh& coarse)
-    {
-        std::vector<triVerts> triangles;
-        for (const coarseBoundaryFace& f : coarse.boundary) triangles.push_back(f.v);
-        nBoundary_ = triangles.size();
-        for (const coarseZoneFace& f : coarse.zoneFaces) triangles.push_back(f.v);
-        return triangles;
-    }
-
-    const std::vector<point3>& points_;
-    double reach_;
-    label nBoundary_ = 0;       //!< the first ones: counted only on leaving
-    std::vector<triVerts> triangles_;
-    triangleGrid grid_;
-};
 
 
 //- How far a gap query must look: the thickest stack over its ratio.

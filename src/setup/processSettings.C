@@ -1,5 +1,5 @@
 #include "processSettings.H"
-#include "childProcess.H"
+#include "mesherChild.H"
 #include "foamShims.H"
 
 #include "argList.H"
