@@ -336,10 +336,10 @@ void pmsh::checkLabelEstimate
 (
     const meshSettings& settings,
     std::int64_t coarseCells,
-    double weightedFineCells,
-    std::int64_t maxLabel
+    double weightedFineCells
 )
 {
+    const std::int64_t maxLabel = labelLimit;
     // A tet mesh has at least two faces a cell (four faces, each shared by
     // at most two cells): the least faces, from the least fine cells
     const mesherFigures& f = figuresOf(settings.volumeMesher, settings.coarseMesher);

@@ -1,6 +1,5 @@
 #include "wallLayers.H"
 #include "triangleCrossings.H"
-#include "triangleGrid.H"
 #include "layerStars.H"
 
 #include <algorithm>
@@ -621,25 +620,6 @@ wallLayers growWallLayers(const layerSurface& surface, layerExchange& exchange)
     return layers;
 }
 
-
-std::function<double(const point3&, const vector3&, double)> gapAlongTriangles
-(
-    const std::vector<point3>& points,
-    const std::vector<triVerts>& triangles
-)
-{
-    return [points, triangles](const point3& origin, const vector3& d, double skip)
-    {
-        // The nearest hit beyond skip
-        double nearest = layerStars::none;
-        for (const triVerts& f : triangles)
-        {
-            const double t = rayTriangle(origin, d, points[f[0]], points[f[1]], points[f[2]]);
-            if (t > skip) nearest = std::min(nearest, t);
-        }
-        return nearest;
-    };
-}
 
 } // End namespace pmsh
 

@@ -12,6 +12,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "wallLayers.H"
+#include "gapAlongTriangles.H"
 #include "triangleCrossings.H"
 #include "meshPatch.H"
 
@@ -27,6 +28,7 @@
 #include <thread>
 
 using namespace pmsh;
+using pmsh::test::gapAlongTriangles;
 
 namespace
 {
