@@ -13,7 +13,6 @@ Usage: bench/quality [--work DIR] [--tutorials sphere,shaft] [--levels 2]
 
 import argparse
 import json
-import math
 import os
 import shutil
 import subprocess
@@ -181,7 +180,7 @@ def main():
         "- netgen: `volumeMesher netgen; optimisationSteps 3;` (Netgen's own optimiser)",
         "- hxt: `volumeMesher hxt; optimisationSteps 0;` (HXT alone)",
         "- hxt + pass: `volumeMesher hxt;` and hxt's default optimisationSteps (HXT's"
-        " own optimiser, then pmshFoam's quality pass: src/volume/tetQualityPass.H)",
+        " own optimiser, then pmshFoam's quality pass: src/qualityPass/tetQualityPass.H)",
         "",
         "Quality as OpenFOAM's checkMesh (`-parallel` on 2 and 4 ranks) reports it;"
         " time per cell = fine time (stages 2-6, wall, slowest rank) / fine cells.",

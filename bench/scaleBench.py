@@ -870,10 +870,8 @@ def sessions_text(res):
                       pb.md_table(header, rows)])
 
 
-def write_scaling_markdown(args, res):
-    models, speed, fits, d, bytes_per_coarse, bytes_sent, fine = build_models(args, res)
-    runs = [r for r in res["runs"] if "error" not in r]
-    several = len(res.get("sessions") or []) > 1
+def scaling_rows(res, runs, several):
+    """The table of the same problem on P ranks"""
     rows = []
     for r in runs:
         rows.append(["%d" % r["ranks"], "%d" % r["fineCells"],
@@ -886,7 +884,11 @@ def write_scaling_markdown(args, res):
                      "%.0f" % (r["broadcastBytes"]/1024.0),
                      "%.0f" % (max(r["peakMemoryPerRankBytes"])/2**20),
                      fmt(r.get("load"), 2)] + ([session_of(res, r)] if several else []))
-    # The fine stage's fit points
+    return rows
+
+
+def fine_fit_rows(fine):
+    """The fine stage's fit points, and a line per volume mesher on its fit"""
     fit_rows, fit_text = [], []
     for mesher in ("netgen", "hxt"):
         if mesher not in fine:
@@ -911,7 +913,11 @@ def write_scaling_markdown(args, res):
         else:
             fit_text.append("%s: no fit runs in scaling.json, a constant rate from its P = 1 "
                             "run (k = %.3g s, e = 1)" % (mesher, k))
-    # Model error on the runs with one core per rank
+    return fit_rows, fit_text
+
+
+def model_checks(res, runs, models, several):
+    """The model's error on the runs with one core per rank"""
     checks = []
     for r in [x for x in res["rates"] + runs if "error" not in x and x["ranks"] <= 2]:
         mesher = r["volumeMesher"]
@@ -931,7 +937,11 @@ def write_scaling_markdown(args, res):
                        fmt(fine_seconds(r)), fmt(predicted_fine), fmt(r.get("load"), 2),
                        fmt(r.get("cpuShare"), 2)]
                       + ([session_of(res, r)] if several else []))
-    # The paper's Table 2, projected
+    return checks
+
+
+def paper_projection(models, speed, runs):
+    """The paper's Table 2 rows, projected; and the fine cells per rank of each"""
     projection, per_rank = [], []
     for row in pb.read_paper_table():
         if row["geometry"] not in ("sphere.geo", "shaft.geo", "sphere.stl"):
@@ -947,6 +957,17 @@ def write_scaling_markdown(args, res):
                           fmt(row["totalTime"]/sum(st.values()), 1)]
         per_rank.append(runs[-1]["balance"]*F/P)
         projection.append(cells)
+    return projection, per_rank
+
+
+def write_scaling_markdown(args, res):
+    models, speed, fits, d, bytes_per_coarse, bytes_sent, fine = build_models(args, res)
+    runs = [r for r in res["runs"] if "error" not in r]
+    several = len(res.get("sessions") or []) > 1
+    rows = scaling_rows(res, runs, several)
+    fit_rows, fit_text = fine_fit_rows(fine)
+    checks = model_checks(res, runs, models, several)
+    projection, per_rank = paper_projection(models, speed, runs)
     # Sessions from before the wait for a quiet machine
     older = sorted(set(session_of(res, r) for k in ("runs", "rates", "fineFit")
                        for r in res.get(k, []) if "waitedForLoad" not in r))

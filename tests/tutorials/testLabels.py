@@ -13,7 +13,6 @@ Run one test:  python3 testLabels.py labels.test_sphereSerialMeshOk
 """
 
 import os
-import re
 import sys
 import unittest
 

@@ -20,7 +20,6 @@ Run one test:  python3 testStlRetries.py stlRetries.test_thinCurvedWallMeshesAtA
 
 import math
 import os
-import re
 import shutil
 import sys
 import unittest
