@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Before and after, in one run: the pmshFoam built here against another
-pmshFoam (an older commit's build), on issue #22's case: the sphere
+pmshFoam (an older commit's build), on the 1M-cell sphere: the sphere
 tutorial with maxCellSize 0.1, refinementLevels 2, volumeMesher hxt,
 binary, 2 ranks (about 1M cells). The two alternate (before, after,
 before, ...), so that the load of a shared machine hits them alike.
@@ -79,7 +79,7 @@ def report(args, rows, checks, load):
     pairs = list(zip(before, after))
     per_cell = lambda r, key: r[key]/r["cells"]
     lines = [
-        "# Before and after: issue #22's case",
+        "# Before and after: the 1M-cell sphere",
         "",
         "Produced by `bench/run --before` on %s UTC: the sphere tutorial, maxCellSize 0.1,"
         " r = 2, hxt, binary, %d ranks; %d rounds, before and after alternating; load average"

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The price of each optimisationSteps setting: 0 (the fast mode: sliver
 removal only), 1 and 3 (the default), on the sphere with hxt at about 1M
-cells (maxCellSize 0.1, r = 2, 2 ranks, binary: issue #22's case) and on
+cells (maxCellSize 0.1, r = 2, 2 ranks, binary: the before/after case of bench/beforeAfter.py) and on
 the shaft with netgen (r = 2, 2 ranks). The settings alternate within each
 round, so that the load of a shared machine hits them alike. Per run:
 stage 4's time (slowest rank), fine cells, the attempts each rank needed,

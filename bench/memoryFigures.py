@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Measure the figures of pmshFoam's memory estimate (src/pipeline/memoryEstimate.C).
+"""Measure the figures of pmshFoam's memory estimate (src/forecast/memoryEstimate.C).
 
 For each tutorial geometry and a set of (volumeMesher, coarseMesher, r, ranks),
 mesh a copy of the tutorial and read from its log and summary.json:
@@ -94,7 +94,7 @@ def main():
 
     lines = ["# Memory estimate figures", "",
              "Measured by `bench/memoryFigures.py`; the estimate's figures in "
-             "`src/pipeline/memoryEstimate.C` come from this table.", "",
+             "`src/forecast/memoryEstimate.C` come from this table.", "",
              "| geometry | volumeMesher | coarseMesher | r | ranks | coarse cells | fine cells "
              "| fine / weighted | largest rank / mean | B/cell above base | base MiB "
              "| peak MiB | cells measured/expected | peak measured/expected |",

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """How fast each volume mesher's cells grow away from the body: the mean
 edge length in bands of distance from the wall, for Netgen and HXT on the
-same dictionary, side by side (issue #32: HXT's sizes must follow the size
+same dictionary, side by side (HXT's sizes must follow the size
 field Netgen's follow, within 15 % in every band).
 
 - sphereDrag as shipped (distance from the ball of radius 0.5);

@@ -36,7 +36,7 @@ using namespace Foam;
 // The geometry of OpenFOAM's primitiveMesh (v1912), computed face by face
 // from the points: the mesh's own faceCentres()/faceAreas()/cellCentres()
 // would keep three face fields and two cell fields (about 130 bytes per
-// cell), the largest part of stage 6's peak. Only the cell centres and
+// cell), the largest part of stage 7's peak. Only the cell centres and
 // volumes are kept here; the formulas are primitiveMesh's, so the figures
 // are checkMesh's (to rounding: each internal face's centre is computed
 // once for both its cells, so a cell's sums add the same terms in another

@@ -5,7 +5,7 @@ Gmsh's HXT gives another mesh of the same surface depending on how the
 heap of its process was used before (one thread; it orders by address
 somewhere), and a rank's heap depends on MPI's timing; multithreaded HXT
 differs from run to run anyway. So the meshers run in fresh processes of
-pmshFoam (src/volume/childProcess.H) and the coarse surface is filled
+pmshFoam (src/process/childProcess.H) and the coarse surface is filled
 with one thread (src/coarse/coarseMesh.C). Without either, the shaft at
 r = 2 on 2 ranks with hxt gave another mesh in most runs.
 

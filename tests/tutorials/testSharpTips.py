@@ -1,4 +1,4 @@
-"""Sharp tips (issue #24): a cone in a box (tests/data/geometry/
+"""Sharp tips: a cone in a box (tests/data/geometry/
 coneInBox.geo, half angle 9.5 degrees, tip radius 0.0005) on 2 ranks with
 hxt meshes without falling back to Netgen, and checkMesh -parallel's max
 non-orthogonality stays below 80 degrees. HXT alone (optimisationSteps 0)
