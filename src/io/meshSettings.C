@@ -1,12 +1,13 @@
 #include "meshSettings.H"
+#include "dictEntries.H"
 #include "foamShims.H"
 #include "VolumeMesher.H"
 #include "layerSpecification.H"
 
 #include <algorithm>
-#include <sstream>
 #include <cctype>
 #include <cmath>
+#include <sstream>
 #include <limits>
 #include <filesystem>
 #include <fstream>
@@ -24,180 +25,8 @@ using Foam::entry;
 
 const char* const where = "pmsh::readMeshSettings";
 
-std::string joined(const std::vector<std::string>& words)
-{
-    std::string s;
-    for (const std::string& w : words)
-    {
-        s += (s.empty() ? "" : ", ") + w;
-    }
-    return s;
-}
-
-
-bool contains(const std::vector<std::string>& words, const std::string& w)
-{
-    return std::find(words.begin(), words.end(), w) != words.end();
-}
-
-
-//- Edit distance (ignoring case), to suggest the entry a typo meant.
-std::size_t editDistance(const std::string& a, const std::string& b)
-{
-    std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i)
-    {
-        cur[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j)
-        {
-            const bool same =
-                std::tolower(static_cast<unsigned char>(a[i - 1]))
-             == std::tolower(static_cast<unsigned char>(b[j - 1]));
-            cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + !same});
-        }
-        std::swap(prev, cur);
-    }
-    return prev[b.size()];
-}
-
-
-//- " Did you mean 'grading'?" when a valid name is close to key.
-std::string suggestion(const std::string& key, const std::vector<std::string>& valid)
-{
-    std::string best;
-    std::size_t bestDist = 3;
-    for (const std::string& v : valid)
-    {
-        const std::size_t d = editDistance(key, v);
-        if (d < bestDist)
-        {
-            bestDist = d;
-            best = v;
-        }
-    }
-    return best.empty() ? "" : " Did you mean '" + best + "'?";
-}
-
-
-//- FatalIOError located at an entry of d: the file and the entry's lines.
-Foam::OSstream& entryError(const dictionary& d, const entry& e)
-{
-    return foam::ioError
-    (
-        Foam::FatalIOError, where, __FILE__, __LINE__,
-        d.topDict().name(), e.startLineNumber(), e.endLineNumber()
-    );
-}
-
-
-//- "Entry 'key' is <value><note>" and what is valid, at the entry's line.
-void invalid
-(
-    const dictionary& d,
-    const entry& e,
-    const std::string& valid,
-    const std::string& note = ""
-)
-{
-    const std::string value =
-        e.isStream() ? foam::tokensString(e.stream()) : "a sub-dictionary";
-    entryError(d, e)
-        << "Entry '" << e.keyword().c_str() << "' is " << value.c_str()
-        << note.c_str() << '\n' << valid.c_str()
-        << Foam::exit(Foam::FatalIOError);
-}
-
-
-//- The value of an entry of exactly one token, else nullptr.
-const Foam::token* single(const entry& e)
-{
-    return e.isStream() && e.stream().size() == 1 ? &e.stream()[0] : nullptr;
-}
-
-
-//- An optional number (an integer if integral) within [lo, hi]. Not
-//  getCheckOrDefault (none in Foundation 13): its error names neither the
-//  value, the entry's line nor the valid values, as these messages do.
-double bounded
-(
-    const dictionary& d,
-    const char* key,
-    double deflt,
-    double lo,
-    double hi,
-    bool integral,
-    const std::string& valid
-)
-{
-    const entry* e = foam::findEntry(d, key);
-    if (!e) return deflt;
-    const Foam::token* t = single(*e);
-    if
-    (
-        !t || !(integral ? t->isLabel() : t->isNumber())
-     || !(t->number() >= lo && t->number() <= hi)
-    )
-    {
-        // 1e1 is written back as 10, and "is fine" reads as a verdict:
-        // say why the value is wrong
-        const bool real = integral && t && t->isScalar();
-        const bool number = t && t->isNumber();
-        invalid
-        (
-            d, *e, valid,
-            real ? " (not an integer)" : t && !number ? " (not a number)" : ""
-        );
-    }
-    return t->number();
-}
-
-
-//- An optional word from a list of choices (known at run time: no Foam::Enum).
-std::string choice
-(
-    const dictionary& d,
-    const char* key,
-    const std::string& deflt,
-    const std::vector<std::string>& choices
-)
-{
-    const entry* e = foam::findEntry(d, key);
-    if (!e) return deflt;
-    const Foam::token* t = single(*e);
-    if (!t || !foam::isStringType(*t) || !contains(choices, foam::stringToken(*t)))
-    {
-        invalid(d, *e, "Valid values are: " + joined(choices));
-    }
-    return foam::stringToken(*t);
-}
-
-
-//- <case>/x, $FOAM_CASE/x and relative names are relative to the case
-//  (fileName::expand would take it from $FOAM_CASE, not from caseDir).
-std::string casePath(const std::string& caseDir, const std::string& name)
-{
-    std::string rest = name;
-    bool caseRelative = false;
-    for (const std::string tag : {"<case>", "${FOAM_CASE}", "$FOAM_CASE"})
-    {
-        if (rest.compare(0, tag.size(), tag) == 0)
-        {
-            rest.erase(0, tag.size());
-            rest.erase(0, rest.find_first_not_of('/'));
-            caseRelative = true;
-            break;
-        }
-    }
-    fs::path p(rest);
-    if (caseRelative || p.is_relative())
-    {
-        p = fs::path(caseDir)/p;
-    }
-    std::error_code ec;
-    const fs::path abs = fs::absolute(p, ec);
-    return (ec ? p : abs).lexically_normal().string();
-}
+// Every entry is read and checked the one way (dictEntries.H)
+const entryChecks check(where);
 
 
 std::string readGeometry(const dictionary& d, const std::string& caseDir)
@@ -207,16 +36,16 @@ std::string readGeometry(const dictionary& d, const std::string& caseDir)
     const entry* e = foam::findEntry(d, "geometry");
     if (!e)
     {
-        FatalIOErrorInFunction(d)
+        check.error(d, "geometry")
             << "Entry 'geometry' not found\n"
             << "Set it to the geometry file, relative to the case directory,"
             << " e.g.\n    geometry \"constant/geometry/body.stl\";\n"
             << validFiles << Foam::exit(Foam::FatalIOError);
     }
-    const Foam::token* t = single(*e);
+    const Foam::token* t = singleToken(*e);
     if (!t || !foam::isStringType(*t))
     {
-        invalid
+        check.invalid
         (
             d, *e,
             "geometry must be a file name in quotes, relative to the case"
@@ -266,7 +95,7 @@ std::string readGeometry(const dictionary& d, const std::string& caseDir)
     }
     if (!problem.empty())
     {
-        entryError(d, *e)
+        check.error(d, *e)
             << "Entry 'geometry' is \"" << name.c_str() << "\": "
             << problem.c_str() << Foam::exit(Foam::FatalIOError);
     }
@@ -293,55 +122,17 @@ double localSize
     {
         if (required)
         {
-            FatalIOErrorInFunction(sub)
+            check.error(sub, "maxCellSize")
                 << "Entry 'maxCellSize' not found in " << owner.c_str()
                 << '\n' << valid.c_str() << Foam::exit(Foam::FatalIOError);
         }
         return 0;
     }
-    return bounded
+    return check.bounded
     (
         sub, "maxCellSize", 0, std::numeric_limits<double>::min(),
         std::numeric_limits<double>::max(), false, valid
     );
-}
-
-
-//- A required point entry "(x y z)" of a region.
-pmsh::point3 readPoint
-(
-    const dictionary& region,
-    const char* key,
-    const std::string& owner
-)
-{
-    const std::string valid =
-        "Entry '" + std::string(key) + "' of " + owner
-      + " must be a point (x y z), e.g. " + key + " (0 0 0);";
-    const entry* e = foam::findEntry(region, key);
-    if (!e)
-    {
-        FatalIOErrorInFunction(region)
-            << "Entry '" << key << "' not found in " << owner.c_str() << '\n'
-            << valid.c_str() << Foam::exit(Foam::FatalIOError);
-    }
-    const bool stream = e->isStream();
-    Foam::ITstream* is = stream ? &e->stream() : nullptr;
-    bool ok =
-        stream && is->size() == 5
-     && (*is)[0].isPunctuation() && (*is)[0].pToken() == Foam::token::BEGIN_LIST
-     && (*is)[4].isPunctuation() && (*is)[4].pToken() == Foam::token::END_LIST;
-    pmsh::point3 p{};
-    for (int k = 0; ok && k < 3; ++k)
-    {
-        ok = (*is)[k + 1].isNumber() && std::isfinite((*is)[k + 1].number());
-        if (ok) p[k] = (*is)[k + 1].number();
-    }
-    if (!ok)
-    {
-        invalid(region, *e, valid);
-    }
-    return p;
 }
 
 
@@ -357,11 +148,11 @@ double readPositive
         "Entry '" + std::string(key) + "' of " + owner + " must be a number > 0";
     if (!foam::findEntry(region, key))
     {
-        FatalIOErrorInFunction(region)
+        check.error(region, key)
             << "Entry '" << key << "' not found in " << owner.c_str() << '\n'
             << valid.c_str() << Foam::exit(Foam::FatalIOError);
     }
-    return bounded
+    return check.bounded
     (
         region, key, 0, std::numeric_limits<double>::min(),
         std::numeric_limits<double>::max(), false, valid
@@ -374,7 +165,7 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
 {
     using pmsh::sizeRegion;
     const std::vector<std::string> shapes = sizeRegion::shapeNames();
-    const std::string validTypes = "Valid region types are: " + joined(shapes);
+    const std::string validTypes = "Valid region types are: " + joinedWords(shapes);
     const std::string example =
         "    refinementRegions\n    {\n"
         "        wake { type box; min (0 -1 -1); max (4 1 1); maxCellSize 0.05; }\n"
@@ -383,7 +174,7 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
         " radius 0.1; maxCellSize 0.02; }\n    }";
     if (!regionsEntry.isDict())
     {
-        invalid
+        check.invalid
         (
             d, regionsEntry,
             "Expected a sub-dictionary of named regions, e.g.\n" + example
@@ -396,21 +187,21 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
         const std::string owner = "region '" + r.keyword() + "'";
         if (r.keyword().isPattern() || !r.isDict())
         {
-            invalid(d, r, "Expected '" + r.keyword() + " { type T; ... }' with T"
-                " one of: " + joined(shapes) + ", e.g.\n" + example);
+            check.invalid(d, r, "Expected '" + r.keyword() + " { type T; ... }' with T"
+                " one of: " + joinedWords(shapes) + ", e.g.\n" + example);
         }
         const dictionary& rd = r.dict();
         const entry* t = foam::findEntry(rd, "type");
         if (!t)
         {
-            entryError(d, r)
+            check.error(d, r)
                 << "Entry 'type' not found in " << owner.c_str() << "\n"
                 << validTypes.c_str() << Foam::exit(Foam::FatalIOError);
         }
-        const Foam::token* tok = single(*t);
-        if (!tok || !foam::isStringType(*tok) || !contains(shapes, foam::stringToken(*tok)))
+        const Foam::token* tok = singleToken(*t);
+        if (!tok || !foam::isStringType(*tok) || !containsWord(shapes, foam::stringToken(*tok)))
         {
-            invalid(rd, *t, validTypes);
+            check.invalid(rd, *t, validTypes);
         }
 
         sizeRegion region;
@@ -434,27 +225,27 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
         }
         for (const entry& x : rd)
         {
-            if (!contains(entries, x.keyword()))
+            if (!containsWord(entries, x.keyword()))
             {
-                entryError(d, x)
+                check.error(d, x)
                     << "Unknown entry '" << x.keyword().c_str() << "' in "
                     << owner.c_str() << '.'
-                    << suggestion(x.keyword(), entries).c_str() << '\n'
+                    << didYouMean(x.keyword(), entries).c_str() << '\n'
                     << "Valid entries of a " << type.c_str() << " are: "
-                    << joined(entries).c_str() << Foam::exit(Foam::FatalIOError);
+                    << joinedWords(entries).c_str() << Foam::exit(Foam::FatalIOError);
             }
         }
 
         switch (region.type)
         {
             case sizeRegion::shape::box:
-                region.min = readPoint(rd, "min", owner);
-                region.max = readPoint(rd, "max", owner);
+                region.min = check.point(rd, "min", owner);
+                region.max = check.point(rd, "max", owner);
                 for (int k = 0; k < 3; ++k)
                 {
                     if (!(region.min[k] < region.max[k]))
                     {
-                        invalid
+                        check.invalid
                         (
                             rd, *foam::findEntry(rd, "max"),
                             "Every component of 'max' of " + owner
@@ -465,16 +256,16 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
                 }
                 break;
             case sizeRegion::shape::sphere:
-                region.centre = readPoint(rd, "centre", owner);
+                region.centre = check.point(rd, "centre", owner);
                 region.radius = readPositive(rd, "radius", owner);
                 break;
             case sizeRegion::shape::cylinder:
-                region.point1 = readPoint(rd, "point1", owner);
-                region.point2 = readPoint(rd, "point2", owner);
+                region.point1 = check.point(rd, "point1", owner);
+                region.point2 = check.point(rd, "point2", owner);
                 region.radius = readPositive(rd, "radius", owner);
                 if (!(magSqr(region.point2 - region.point1) > 0))
                 {
-                    invalid
+                    check.invalid
                     (
                         rd, *foam::findEntry(rd, "point2"),
                         "point1 and point2 of " + owner + " are the ends of"
@@ -491,7 +282,7 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
         const double nSamples = region.volume()/std::pow(region.size, 3);
         if (nSamples > 1e8)
         {
-            entryError(d, r)
+            check.error(d, r)
                 << "Region '" << r.keyword().c_str() << "' would hold about "
                 << nSamples << " coarse cells of size " << region.size
                 << " (its volume is " << region.volume() << ")\n"
@@ -507,11 +298,11 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
 void checkPatches(const dictionary& d, const entry& patchesEntry)
 {
     const std::vector<std::string> types = meshSettingsPatchTypes();
-    const std::string validTypes = "Valid patch types are: " + joined(types);
+    const std::string validTypes = "Valid patch types are: " + joinedWords(types);
 
     if (!patchesEntry.isDict())
     {
-        invalid
+        check.invalid
         (
             d, patchesEntry,
             "Expected a sub-dictionary of patch names (or \"regular"
@@ -524,26 +315,26 @@ void checkPatches(const dictionary& d, const entry& patchesEntry)
     {
         if (!p.isDict())
         {
-            invalid
+            check.invalid
             (
                 d, p,
                 "Expected '" + p.keyword() + " { type T; }' with T one of: "
-              + joined(types)
+              + joinedWords(types)
             );
         }
         const std::vector<std::string> entries = meshSettingsPatchEntries();
         for (const entry& x : p.dict())
         {
-            if (!contains(entries, x.keyword()))
+            if (!containsWord(entries, x.keyword()))
             {
-                entryError(d, x)
+                check.error(d, x)
                     << "Unknown entry '" << x.keyword().c_str()
                     << "' in patch '" << p.keyword().c_str() << "'."
-                    << suggestion(x.keyword(), entries).c_str() << '\n'
+                    << didYouMean(x.keyword(), entries).c_str() << '\n'
                     << "Valid entries of a patch are: 'type' ("
-                    << joined(types).c_str() << "), 'maxCellSize' (the"
+                    << joinedWords(types).c_str() << "), 'maxCellSize' (the"
                     << " coarse cell size on the patch) and the prism layers' "
-                    << joined(layerSpecificationEntries()).c_str()
+                    << joinedWords(layerSpecificationEntries()).c_str()
                     << Foam::exit(Foam::FatalIOError);
             }
         }
@@ -552,15 +343,15 @@ void checkPatches(const dictionary& d, const entry& patchesEntry)
         const entry* t = foam::findEntry(p.dict(), "type");
         if (!t)
         {
-            entryError(d, p)
+            check.error(d, p)
                 << "Entry 'type' not found in patch '" << p.keyword().c_str()
                 << "'\n" << validTypes.c_str()
                 << Foam::exit(Foam::FatalIOError);
         }
-        const Foam::token* tok = single(*t);
-        if (!tok || !foam::isStringType(*tok) || !contains(types, foam::stringToken(*tok)))
+        const Foam::token* tok = singleToken(*t);
+        if (!tok || !foam::isStringType(*tok) || !containsWord(types, foam::stringToken(*tok)))
         {
-            invalid(d, *t, validTypes);
+            check.invalid(d, *t, validTypes);
         }
     }
 }
@@ -615,7 +406,7 @@ meshSettings readMeshSettings
         const std::string key = e.keyword();
         if (key == "labelSize")
         {
-            entryError(dict, e)
+            check.error(dict, e)
                 << "Entry 'labelSize' is no longer supported: labels follow"
                 << " the OpenFOAM build (WM_LABEL_SIZE; this build has "
                 << int(8*sizeof(Foam::label)) << "-bit labels)\n"
@@ -623,12 +414,12 @@ meshSettings readMeshSettings
                 << " with an OpenFOAM of WM_LABEL_SIZE=64"
                 << Foam::exit(Foam::FatalIOError);
         }
-        if (key != "FoamFile" && (e.keyword().isPattern() || !contains(valid, key)))
+        if (key != "FoamFile" && (e.keyword().isPattern() || !containsWord(valid, key)))
         {
-            entryError(dict, e)
+            check.error(dict, e)
                 << "Unknown entry '" << key.c_str() << "'."
-                << suggestion(key, valid).c_str() << '\n'
-                << "Valid entries are: " << joined(valid).c_str()
+                << didYouMean(key, valid).c_str() << '\n'
+                << "Valid entries are: " << joinedWords(valid).c_str()
                 << Foam::exit(Foam::FatalIOError);
         }
     }
@@ -640,22 +431,22 @@ meshSettings readMeshSettings
         " coarse mesh, in the units of the geometry";
     if (!foam::findEntry(dict, "maxCellSize"))
     {
-        FatalIOErrorInFunction(dict)
+        check.error(dict, "maxCellSize")
             << "Entry 'maxCellSize' not found\n" << validSize.c_str()
             << Foam::exit(Foam::FatalIOError);
     }
-    s.maxCellSize = bounded
+    s.maxCellSize = check.bounded
     (
         dict, "maxCellSize", 0, std::numeric_limits<double>::min(),
         std::numeric_limits<double>::max(), false, validSize
     );
 
-    s.grading = bounded
+    s.grading = check.bounded
     (
         dict, "grading", 0.3, 0, 1, false,
         "Valid values are numbers 0 <= grading <= 1 (0 uniform .. 1 aggressive)"
     );
-    s.refinementLevels = bounded
+    s.refinementLevels = check.bounded
     (
         dict, "refinementLevels", 1, 0, 10, true,
         "Valid values are integers 0 <= refinementLevels <= 10"
@@ -665,19 +456,19 @@ meshSettings readMeshSettings
     {
         s.refinementLevelsLine = e->startLineNumber();
     }
-    s.volumeMesher = choice(dict, "volumeMesher", "netgen", VolumeMesher::names());
+    s.volumeMesher = check.choice(dict, "volumeMesher", "netgen", VolumeMesher::names());
     // By default the volume mesher fills the coarse surface too: HXT is
     // 4-27x faster per cell there at the fine quality HXT gives anyway, while
     // Netgen's fine meshes are up to 10 degrees better on a Netgen coarse
     // mesh (bench/results/coarse-stage.md)
-    s.coarseMesher = choice(dict, "coarseMesher", s.volumeMesher, VolumeMesher::names());
-    s.optimisationSteps = bounded
+    s.coarseMesher = check.choice(dict, "coarseMesher", s.volumeMesher, VolumeMesher::names());
+    s.optimisationSteps = check.bounded
     (
         dict, "optimisationSteps",
         VolumeMesher::New(s.volumeMesher)->defaultOptimisationSteps(), 0, 100, true,
         "Valid values are integers 0 <= optimisationSteps <= 100"
     );
-    s.volumeMesherThreads = bounded
+    s.volumeMesherThreads = check.bounded
     (
         dict, "volumeMesherThreads", 1, 1, 256, true,
         "Valid values are integers 1 <= volumeMesherThreads <= 256"
@@ -688,7 +479,7 @@ meshSettings readMeshSettings
     // coarse faces from its STL (mean edge 0.24), as from CSG, where
     // Netgen always sizes by curvature (128, 0.23); with 0 or 2 it gets 70
     // (0.31), whatever the global size
-    s.curvatureRefinement = bounded
+    s.curvatureRefinement = check.bounded
     (
         dict, "curvatureRefinement", 3, 0, 100, false,
         "Valid values are numbers 0 <= curvatureRefinement <= 100: coarse"
@@ -704,14 +495,14 @@ meshSettings readMeshSettings
         << "Valid values are numbers 0 < minCellSize <= maxCellSize ("
         << s.maxCellSize << "): the smallest coarse cell size that STL"
         << " curvature sizing may ask for (default maxCellSize/8)";
-    s.minCellSize = bounded
+    s.minCellSize = check.bounded
     (
         dict, "minCellSize", s.maxCellSize/8, std::numeric_limits<double>::min(),
         s.maxCellSize, false, validMinCellSize.str()
     );
 
     // 0 (absent): from the STL's size, when it is known (stlGeometry)
-    s.coarseTimeLimit = bounded
+    s.coarseTimeLimit = check.bounded
     (
         dict, "coarseTimeLimit", 0, std::numeric_limits<double>::min(), 1e7,
         false,

@@ -1,4 +1,5 @@
 #include "layerSpecification.H"
+#include "dictEntries.H"
 #include "foamShims.H"
 
 #include "error.H"
@@ -23,42 +24,26 @@ const char* const thicknessEntries[] =
     {"firstLayerThickness", "finalLayerThickness", "totalThickness"};
 
 
-//- FatalIOError at entry `key` of d (at d itself when it has none).
-Foam::OSstream& entryError(const Foam::dictionary& d, const char* key)
-{
-    const Foam::entry* e = foam::findEntry(d, key);
-    return foam::ioError
-    (
-        Foam::FatalIOError, where, __FILE__, __LINE__,
-        d.topDict().name(),
-        e ? e->startLineNumber() : d.startLineNumber(),
-        e ? e->endLineNumber() : d.endLineNumber()
-    );
-}
+// Every entry is read and checked the one way (dictEntries.H)
+const entryChecks check(where);
 
 
-//- Entry `key` read by OpenFOAM's reader, checked against [lo, hi]
-//  (lo excluded if openLo).
-double boundedScalar
+//- Entry `key` of patch patchName, checked against [lo, hi]: lo of the
+//  smallest positive double stands for > 0
+double boundedEntry
 (
     const Foam::dictionary& d,
     const std::string& patchName,
     const char* key,
     double lo,
-    double hi,
-    bool openLo
+    double hi
 )
 {
-    const double v = foam::get<Foam::scalar>(d, key);
-    if (!(openLo ? v > lo : v >= lo) || !(v <= hi))
-    {
-        entryError(d, key)
-            << "Entry '" << key << "' of patch '" << patchName.c_str()
-            << "' is " << v << '\n' << "Valid values are "
-            << (openLo ? "> " : ">= ") << lo << " and <= " << hi
-            << Foam::exit(Foam::FatalIOError);
-    }
-    return v;
+    return check.bounded
+    (
+        d, key, 0, lo, hi, false, validRange(lo, hi),
+        " of patch '" + patchName + "'"
+    );
 }
 
 
@@ -151,7 +136,7 @@ layerSpecification readLayerSpecification
         {
             if (foam::found(d, key))
             {
-                entryError(d, key.c_str())
+                check.error(d, key.c_str())
                     << "Entry '" << key.c_str() << "' of patch '"
                     << patchName.c_str() << "' needs 'layers' (the number of"
                     << " prism layers, 1.." << maxLayers << ") in the same"
@@ -161,15 +146,15 @@ layerSpecification readLayerSpecification
         return spec;
     }
 
-    const Foam::label n = foam::get<Foam::label>(d, "layers");
-    if (n < 0 || n > maxLayers)
-    {
-        entryError(d, "layers")
-            << "Entry 'layers' of patch '" << patchName.c_str() << "' is "
-            << n << '\n' << "Valid values are 0 (no layers) .. " << maxLayers
-            << Foam::exit(Foam::FatalIOError);
-    }
-    spec.nLayers = int(n);
+    spec.nLayers = int
+    (
+        check.bounded
+        (
+            d, "layers", 0, 0, maxLayers, true,
+            "Valid values are 0 (no layers) .. " + std::to_string(maxLayers),
+            " of patch '" + patchName + "'"
+        )
+    );
     if (!spec.layered())
     {
         return spec;
@@ -189,17 +174,18 @@ layerSpecification readLayerSpecification
         " (without expansionRatio)";
     if (given.empty() || given.size() == 3 || (given.size() == 2 && ratioGiven))
     {
-        entryError(d, given.empty() ? "layers" : ratioGiven ? "expansionRatio" : given[2])
+        check.error(d, given.empty() ? "layers" : ratioGiven ? "expansionRatio" : given[2])
             << "Patch '" << patchName.c_str() << "' has layers "
             << spec.nLayers << " and "
             << (given.empty() ? "no thickness" : "too many thickness entries")
             << '\n' << choices.c_str() << Foam::exit(Foam::FatalIOError);
     }
 
+    const double positive = std::numeric_limits<double>::min();
     const double huge = std::numeric_limits<double>::max();
     auto thickness = [&](const char* key)
     {
-        return foam::found(d, key) ? boundedScalar(d, patchName, key, 0, huge, true) : 0;
+        return foam::found(d, key) ? boundedEntry(d, patchName, key, positive, huge) : 0;
     };
     const double first = thickness("firstLayerThickness");
     const double finalLayer = thickness("finalLayerThickness");
@@ -209,7 +195,7 @@ layerSpecification readLayerSpecification
     if (given.size() == 1)
     {
         const double r = ratioGiven
-            ? boundedScalar(d, patchName, "expansionRatio", 1, maxExpansionRatio, false)
+            ? boundedEntry(d, patchName, "expansionRatio", 1, maxExpansionRatio)
             : spec.expansionRatio;
         spec.expansionRatio = r;
         spec.firstLayerThickness =
@@ -242,7 +228,7 @@ layerSpecification readLayerSpecification
         else if ((fLo < 0) != (fHi < 0) && L > 1) r = bisect(mismatch, lo, hi);
         if (r == 0)
         {
-            entryError(d, given[1])
+            check.error(d, given[1])
                 << "Entries '" << given[0] << "' and '" << given[1]
                 << "' of patch '" << patchName.c_str() << "' do not fit "
                 << L << " layers with an expansionRatio between 1 and "
@@ -254,16 +240,20 @@ layerSpecification readLayerSpecification
     }
 
     spec.minThickness = foam::found(d, "minThickness")
-        ? boundedScalar(d, patchName, "minThickness", 0, spec.totalThickness(), false)
+        ? boundedEntry(d, patchName, "minThickness", 0, spec.totalThickness())
         : spec.firstLayerThickness;
     if (foam::found(d, "featureAngle"))
     {
-        spec.featureAngle = boundedScalar(d, patchName, "featureAngle", 0, 180, false);
+        spec.featureAngle = boundedEntry(d, patchName, "featureAngle", 0, 180);
     }
     if (foam::found(d, "maxThicknessToGapRatio"))
     {
         spec.maxThicknessToGapRatio =
-            boundedScalar(d, patchName, "maxThicknessToGapRatio", 0, 0.5, true);
+            boundedEntry
+            (
+                d, patchName, "maxThicknessToGapRatio",
+                std::numeric_limits<double>::min(), 0.5
+            );
     }
     return spec;
 }

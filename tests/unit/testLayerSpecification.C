@@ -124,6 +124,20 @@ TEST(layerSpecification, readsTheLimits)
 }
 
 
+TEST(layerSpecification, wrongValuesSayWhatIsWrongAsEveryPmshDictEntryDoes)
+{
+    // The one reader of pmshDict's entries (dictEntries.H): a layer entry
+    // that is no number, or no integer where one is needed, says so, with
+    // the value and the valid range, as the top-level entries do
+    const std::string half = errorFor("layers 2.5;\nfirstLayerThickness 1;\n");
+    EXPECT_HAS(half, "Entry 'layers' of patch 'ball' is 2.5 (not an integer)");
+    EXPECT_HAS(half, "Valid values are 0 (no layers) .. 100");
+    const std::string word = errorFor("layers 3;\nfirstLayerThickness thin;\n");
+    EXPECT_HAS(word, "Entry 'firstLayerThickness' of patch 'ball' is thin (not a number)");
+    EXPECT_HAS(word, "at line 2");
+}
+
+
 TEST(layerSpecification, errorsNameTheEntryTheValidValuesAndTheLine)
 {
     const std::string layers = errorFor("type wall;\nlayers 101;\nfirstLayerThickness 1;\n");
