@@ -51,7 +51,7 @@ class codeShape(unittest.TestCase):
         code, out = self.run_tool({
             "src/core/f.C": "namespace pmsh\n{\n" + function("longOne", 149) + "}\n"})
         self.assertEqual(code, 1, out)
-        self.assertIn("function longOne: 152 lines (limit 150)", out)
+        self.assertIn("function longOne: 153 lines (limit 150)", out)
 
     def test_folderCycleIsAnError(self):
         code, out = self.run_tool({
@@ -93,8 +93,33 @@ class codeShape(unittest.TestCase):
                             "    bool operator<(const c& o) const\n    {\n"
                             + body + "        return false;\n    }\n};\n}\n"})
         self.assertEqual(code, 1, out)
-        self.assertIn("function c: 151 lines (limit 150)", out)
-        self.assertIn("function operator<: 152 lines (limit 150)", out)
+        self.assertIn("function c: 155 lines (limit 150)", out)
+        self.assertIn("function operator<: 153 lines (limit 150)", out)
+
+    def test_aFunctionIsCountedFromItsSignature(self):
+        # OpenFOAM's style: a parameter a line. 146 lines of body fit
+        # between the braces; with the 6 lines of signature they do not
+        signature = "pmsh::label pmsh::f\n(\n    int a,\n    int b,\n    int c\n)\n"
+        body = "".join(f"    int a{i} = {i};\n" for i in range(146))
+        code, out = self.run_tool({
+            "src/core/f.C": signature + "{\n" + body + "}\n"})
+        self.assertEqual(code, 1, out)
+        self.assertIn("src/core/f.C:1: function pmsh::f: 154 lines (limit 150)", out)
+
+    def test_testsAndBenchScriptsAreChecked(self):
+        # A test file may be longer than a source file, not without end;
+        # a Python function of bench/ keeps the function limit
+        long_test = "// line\n" * 1201
+        script = "def long_one():\n" + "    x = 1\n" * 150
+        code, out = self.run_tool({
+            "tests/unit/testLong.C": long_test,
+            "tests/unit/testFine.C": "// line\n" * 1000,
+            "bench/script.py": script,
+        })
+        self.assertEqual(code, 1, out)
+        self.assertIn("tests/unit/testLong.C: 1201 lines (limit 1200)", out)
+        self.assertNotIn("testFine.C", out)
+        self.assertIn("bench/script.py:1: function long_one: 151 lines (limit 150)", out)
 
 if __name__ == "__main__":
     unittest.main()
