@@ -26,7 +26,8 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import benchCase as bc  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools"))
+import foamCase as fc  # noqa: E402
 
 RANKS = 2
 SETTINGS = (("maxCellSize", 0.1), ("refinementLevels", 2), ("volumeMesher", "hxt"))
@@ -43,11 +44,11 @@ def build_environment(env, binary):
 
 
 def prepare(work, name):
-    case = bc.copy_tutorial("sphere", os.path.join(work, name))
+    case = fc.copy_tutorial("sphere", os.path.join(work, name))
     pmshDict = os.path.join(case, "system", "pmshDict")
     for key, value in SETTINGS:
-        bc.set_entry(pmshDict, key, value)
-    bc.set_entry(os.path.join(case, "system", "controlDict"), "writeFormat", "binary")
+        fc.set_entry(pmshDict, key, value)
+    fc.set_entry(os.path.join(case, "system", "controlDict"), "writeFormat", "binary")
     return case
 
 
@@ -55,15 +56,14 @@ def run_once(case, binary, env):
     """One pmshFoam run: the summary's figures and the command's resources"""
     start = time.time()
     with open(os.path.join(case, "log.pmshFoam"), "w") as out:
-        proc = subprocess.Popen(bc.mpi(RANKS, [binary, "-case", case, "-overwrite"]), env=env,
+        proc = subprocess.Popen(fc.mpi(RANKS, [binary, "-case", case, "-overwrite"]), env=env,
                                 cwd=case, stdout=out, stderr=subprocess.STDOUT,
                                 stdin=subprocess.DEVNULL)
         _, status, usage = os.wait4(proc.pid, 0)
     row = {"exit": os.waitstatus_to_exitcode(status), "wall": time.time() - start,
            "cpu": usage.ru_utime + usage.ru_stime, "peakMiB": usage.ru_maxrss/1024.0}
     if row["exit"] == 0:
-        with open(os.path.join(case, "postProcessing", "pmshFoam", "summary.json")) as f:
-            s = json.load(f)
+        s = fc.summary(case)
         row.update(cells=s["fineCells"], total=s["totalTime"], coarse=s["coarseTime"],
                    fine=s["fineTime"], write=s["writeTime"])
     return row
@@ -118,11 +118,11 @@ def main():
     parser.add_argument("--before", required=True, help="the pmshFoam to compare against")
     parser.add_argument("--after", default=None, help="default: the one built here")
     parser.add_argument("--rounds", type=int, default=7)
-    parser.add_argument("--out", default=os.path.join(bc.BENCH_DIR, "results"))
+    parser.add_argument("--out", default=os.path.join(fc.BENCH_DIR, "results"))
     parser.add_argument("--work", default=None)
     parser.add_argument("--no-build", action="store_true", help="(bench/run: do not build first)")
     args = parser.parse_args()
-    env = bc.environment()
+    env = fc.environment()
     args.after = args.after or os.path.join(env["FOAM_USER_APPBIN"], "pmshFoam")
     for binary in (args.before, args.after):
         if not os.access(binary, os.X_OK):
@@ -140,7 +140,7 @@ def main():
             if row["exit"] != 0:
                 sys.exit("Error: the %s build failed, see %s/log.pmshFoam" % (name, cases[name]))
             if name not in checks:
-                checks[name] = bc.check_mesh(cases[name], RANKS, envs[name])
+                checks[name] = fc.check_mesh(cases[name], RANKS, envs[name])
             rows.append(row)
     os.makedirs(args.out, exist_ok=True)
     with open(os.path.join(args.out, "before-after.json"), "w") as f:

@@ -10,8 +10,8 @@ sizing controls (a level of refinement with projection divides it by about
 triangles of the same solid; the table gives its maximum and mean over the
 named solid. Writes bench/results/curvature.md (and .json).
 
-    bench/curvature              # every case
-    bench/curvature --quick      # one case, two settings (a smoke run)
+    bench/run --curvature              # every case
+    bench/run --curvature --quick      # one case, two settings (a smoke run)
 """
 
 import argparse
@@ -23,10 +23,10 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "tests", "tutorials"))
-from tutorialCase import SOURCE_DIR, TutorialCase  # noqa: E402
+sys.path.insert(0, os.path.join(HERE, "..", "tools"))
+from foamCase import ROOT, TutorialCase  # noqa: E402
 
-GEOMETRY = os.path.join(SOURCE_DIR, "tests", "data", "geometry")
+GEOMETRY = os.path.join(ROOT, "tests", "data", "geometry")
 
 # (label, STL file, solid measured, maxCellSize)
 CASES = [
@@ -183,7 +183,7 @@ def main():
         json.dump(rows, f, indent=1)
     with open(args.output + ".md", "w") as f:
         f.write("# STL curvature sizing: cells against geometric error\n\n"
-                "Written by `bench/curvature` on %s (%s). Serial, refinementLevels 0:\n"
+                "Written by `bench/run --curvature` on %s (%s). Serial, refinementLevels 0:\n"
                 "the coarse mesh every level refines. *error*: distance of the measured\n"
                 "solid's coarse boundary face centroids from its STL triangles (a level\n"
                 "of refinement with projection divides it by about 4). *log's estimate*:\n"

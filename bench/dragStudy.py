@@ -48,9 +48,10 @@ import time
 BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(BENCH_DIR)
 sys.path.insert(0, BENCH_DIR)
-sys.path.insert(0, os.path.join(ROOT, "tests", "tutorials"))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
 import pmshBench as pb  # noqa: E402
-from tutorialCase import PolyMeshFiles  # noqa: E402
+import foamCase as fc  # noqa: E402
+from foamCase import PolyMeshFiles  # noqa: E402
 
 REFERENCE_CD = 1.087            # Johnson & Patel (1999), Re = 100
 AREF = math.pi/4                # D = 1
@@ -356,8 +357,7 @@ SNAPPY_WALLS = {"sphere": "ball", "pipe": "walls"}
 def run(cmd, cwd, logname, np=1, timeout=None):
     """Run an OpenFOAM command (with mpirun -parallel for np > 1); returns
     (ok, wall seconds, log text)"""
-    if np > 1:
-        cmd = ["mpirun", "-np", str(np), "--oversubscribe"] + cmd + ["-parallel"]
+    cmd = fc.mpi(np, cmd)
     start = time.perf_counter()
     with open(os.path.join(cwd, logname), "w") as out:
         proc = subprocess.run(cmd, cwd=cwd, stdout=out, stderr=subprocess.STDOUT,
@@ -458,8 +458,7 @@ def snappy_layer_coverage(case, patch):
 def pmsh_layer_coverage(case, patch):
     """pmshFoam's report of a patch's layers (summary.json): layers,
     coverage (the share of faces with all their layers), thickness"""
-    with open(os.path.join(case, "postProcessing", "pmshFoam", "summary.json")) as f:
-        return json.load(f)["layers"][patch]
+    return fc.summary(case)["layers"][patch]
 
 
 def mesh_dirs(case):

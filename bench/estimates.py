@@ -8,8 +8,8 @@ ranks. The estimate must be within 0.67-1.5 of the actual values, and may
 err high but never more than 1.5x low. Writes bench/results/estimates.md
 (and .json).
 
-    bench/estimates              # every case (~20)
-    bench/estimates --only NAME  # the cases whose name contains NAME
+    bench/run --estimates              # every case (~20)
+    bench/run --estimates --only NAME  # the cases whose name contains NAME
 """
 
 import argparse
@@ -21,10 +21,10 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "tests", "tutorials"))
-from tutorialCase import SOURCE_DIR, TutorialCase, openfoam_environment  # noqa: E402
+sys.path.insert(0, os.path.join(HERE, "..", "tools"))
+from foamCase import ROOT, TutorialCase, summary  # noqa: E402
 
-GEOMETRY = os.path.join(SOURCE_DIR, "tests", "data", "geometry")
+GEOMETRY = os.path.join(ROOT, "tests", "data", "geometry")
 
 SPHERE_BODY = {"body": "maxCellSize 0.1"}
 WAKE = "wake { type box; min (-1 -1 -1); max (4 1 1); maxCellSize 0.3; }"
@@ -95,11 +95,9 @@ def measure(name, tutorial, geometry, np, entries, patch_sizes, regions):
         start = time.time()
         code, log = c.run("pmshFoam", np=np, check=False, timeout=3600)
         seconds = time.time() - start
-        summary = os.path.join(c.dir, "postProcessing", "pmshFoam", "summary.json")
-        if code != 0 or not os.path.exists(summary):
+        s = summary(c.dir)
+        if code != 0 or s is None:
             return {"case": name, "error": log[-1500:]}
-        with open(summary) as f:
-            s = json.load(f)
         peak = max(s["peakMemoryPerRankBytes"])
         return {"case": name, "ranks": np, "volumeMesher": s["volumeMesher"],
                 "coarseCells": s["coarseCells"], "fineCells": s["fineCells"],
@@ -143,7 +141,7 @@ def main():
                  for r in ok)
     with open(args.output + ".md", "w") as f:
         f.write("# The estimate after stage 1 against the run\n\n"
-                "Written by `bench/estimates` on %s (%s). *expected/actual*: the\n"
+                "Written by `bench/run --estimates` on %s (%s). *expected/actual*: the\n"
                 "estimate over the measured value; the goal is 0.67-1.5 (high rather\n"
                 "than low). %d of %d cases within it for both.\n\n"
                 % (time.strftime("%Y-%m-%d"), os.uname().nodename, within, len(ok)))

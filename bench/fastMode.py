@@ -8,7 +8,7 @@ stage 4's time (slowest rank), fine cells, the attempts each rank needed,
 and checkMesh -parallel's verdict, max non-orthogonality and skewness.
 Writes bench/results/fast-mode.md and fast-mode.json.
 
-Usage: bench/fastMode [--rounds 2] [--work DIR]
+Usage: bench/run --fast-mode [--rounds 2] [--work DIR]
 """
 
 import argparse
@@ -21,7 +21,8 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import benchCase as bc  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools"))
+import foamCase as fc  # noqa: E402
 
 CASES = [
     # tutorial, volumeMesher, maxCellSize
@@ -34,26 +35,25 @@ LEVELS = 2
 
 
 def run_one(work, env, tutorial, mesher, size, steps, tag):
-    case = bc.copy_tutorial(tutorial, os.path.join(work, "%s-%s-%d-%s" % (tutorial, mesher, steps, tag)),
-                            bc.RUN_LEFTOVERS + ("[1-9]*", ".*"))
+    case = fc.copy_tutorial(tutorial, os.path.join(work, "%s-%s-%d-%s" % (tutorial, mesher, steps, tag)),
+                            fc.RUN_LEFTOVERS + ("[1-9]*", ".*"))
     pmshDict = os.path.join(case, "system", "pmshDict")
     for key, value in (("volumeMesher", mesher), ("optimisationSteps", steps),
                        ("refinementLevels", LEVELS), ("maxCellSize", size)):
-        bc.set_entry(pmshDict, key, value)
-    bc.set_entry(os.path.join(case, "system", "controlDict"), "writeFormat", "binary")
+        fc.set_entry(pmshDict, key, value)
+    fc.set_entry(os.path.join(case, "system", "controlDict"), "writeFormat", "binary")
     start = time.time()
     with open(os.path.join(case, "log.pmshFoam"), "w") as out:
-        rc = subprocess.run(bc.mpi(RANKS, [env["PMSH_BINARY"], "-case", case]), env=env, cwd=case,
+        rc = subprocess.run(fc.mpi(RANKS, [env["PMSH_BINARY"], "-case", case]), env=env, cwd=case,
                             stdout=out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL).returncode
     row = {"case": tutorial, "mesher": mesher, "maxCellSize": size, "steps": steps,
            "round": tag, "exit": rc, "wall": time.time() - start}
     if rc == 0:
-        with open(os.path.join(case, "postProcessing", "pmshFoam", "summary.json")) as f:
-            summary = json.load(f)
+        summary = fc.summary(case)
         row.update(stage4=summary["stages"]["volume"]["seconds"], cells=summary["fineCells"],
                    attempts=summary["volumeAttemptsPerRank"],
                    meshers=summary["volumeMesherPerRank"])
-        row.update(bc.check_mesh(case, RANKS, env))
+        row.update(fc.check_mesh(case, RANKS, env))
     print(json.dumps(row), flush=True)
     return row
 
@@ -85,7 +85,7 @@ def main():
     parser.add_argument("--rounds", type=int, default=2)
     parser.add_argument("--work", default=None)
     args = parser.parse_args()
-    env = bc.environment()
+    env = fc.environment()
     env.setdefault("PMSH_BINARY", os.path.join(env["FOAM_USER_APPBIN"], "pmshFoam"))
     work = args.work or tempfile.mkdtemp(prefix="pmshFoam-fastMode-")
     load = os.getloadavg()
@@ -94,12 +94,12 @@ def main():
         for steps in STEPS:
             for tutorial, mesher, size in CASES:
                 rows.append(run_one(work, env, tutorial, mesher, size, steps, "round%d" % (r + 1)))
-    results = os.path.join(bc.BENCH_DIR, "results")
+    results = os.path.join(fc.BENCH_DIR, "results")
     with open(os.path.join(results, "fast-mode.json"), "w") as f:
         json.dump({"loadAverageAtStart": load, "runs": rows}, f, indent=1)
     with open(os.path.join(results, "fast-mode.md"), "w") as f:
         f.write("# optimisationSteps 0, 1 and 3: speed and quality\n\n"
-                "Produced by `bench/fastMode` on %s UTC, %d rounds, the settings alternating"
+                "Produced by `bench/run --fast-mode` on %s UTC, %d rounds, the settings alternating"
                 " within each round; load average at the start %.1f on 2 shared cores.\n\n"
                 % (time.strftime("%Y-%m-%d %H:%M", time.gmtime()), args.rounds, load[0]))
         f.write(table(rows) + "\n")

@@ -12,13 +12,12 @@ mesh a copy of the tutorial and read from its log and summary.json:
 - the estimate's error (measured / expected) for cells and peak memory.
 
 Usage (from the project root, with tools/environment sourced):
-    python3 bench/memoryFigures.py [--work DIR] [--quick]
+    bench/run --memory-figures [--work DIR] [--quick]
 It prints a table to paste into memoryEstimate.C and writes
 bench/results/memory-figures.md. Nothing here is part of the tests.
 """
 
 import argparse
-import json
 import os
 import sys
 import tempfile
@@ -47,12 +46,10 @@ def run_one(args, geom, volume, coarse, levels, ranks):
                         levels, volume)
     pb.set_entry(os.path.join(case, "system", "pmshDict"), "coarseMesher", coarse)
     run = pb.Run(pb.pmsh_command(args.pmshFoam, ranks, case), case, "log.pmshFoam")
-    summary = os.path.join(case, "postProcessing", "pmshFoam", "summary.json")
-    if not run.ok or not os.path.exists(summary):
+    s = pb.summary(case)
+    if not run.ok or s is None:
         pb.log("    FAILED %s: %s" % (name, pb.first_error(run.text()) or run.tail()))
         return None
-    with open(summary) as f:
-        s = json.load(f)
     weighted = s["estimatedFineCells"]/s["estimatedCellsPerWeighted"]
     cells = s["fineCellsPerRank"]
     row = {
@@ -93,7 +90,7 @@ def main():
                 rows.append(row)
 
     lines = ["# Memory estimate figures", "",
-             "Measured by `bench/memoryFigures.py`; the estimate's figures in "
+             "Measured by `bench/run --memory-figures`; the estimate's figures in "
              "`src/forecast/memoryEstimate.C` come from this table.", "",
              "| geometry | volumeMesher | coarseMesher | r | ranks | coarse cells | fine cells "
              "| fine / weighted | largest rank / mean | B/cell above base | base MiB "

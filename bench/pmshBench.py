@@ -38,8 +38,9 @@ import time
 # The case helpers every bench script shares; pb.set_entry, pb.check_mesh
 # etc. for the scripts that import this module as pb
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from benchCase import (BENCH_DIR, ROOT, check_mesh, copy_case, copy_tutorial,  # noqa: E402,F401
-                       set_entry)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools"))
+from foamCase import (BENCH_DIR, ROOT, check_mesh, copy_case, copy_tutorial,  # noqa: E402,F401
+                       mpi, set_entry, summary)
 
 # What is measured (geometries, modes, ranks, targets) and how it is reported
 from benchPlan import (GEOMETRIES, MATCH_TOLERANCE, MODES,  # noqa: E402,F401
@@ -193,9 +194,7 @@ def make_case(work, name, tutorial, max_cell_size, levels, mesher):
 
 
 def pmsh_command(exe, ranks, case):
-    if ranks == 1:
-        return [exe, "-case", case]
-    return ["mpirun", "-np", str(ranks), "--oversubscribe", exe, "-parallel", "-case", case]
+    return mpi(ranks, [exe, "-case", case])
 
 
 def run_pmsh(args, geom, levels, max_cell_size, ranks, mesher):
@@ -208,14 +207,12 @@ def run_pmsh(args, geom, levels, max_cell_size, ranks, mesher):
         "wallTime": round(run.wall, 3),
         "loadBefore": run.load_before, "loadAfter": run.load_after, "case": case,
     }
-    summary_path = os.path.join(case, "postProcessing", "pmshFoam", "summary.json")
-    if not run.ok or not os.path.exists(summary_path):
+    s = summary(case)
+    if not run.ok or s is None:
         row["ok"] = False
         row["error"] = first_error(run.text()) or run.tail()
         log("    FAILED (%s), see %s" % (name, run.log))
         return row
-    with open(summary_path) as f:
-        s = json.load(f)
     retries = volume_retries(s, run.text())
     if retries:
         row["volumeRetries"] = retries

@@ -7,7 +7,7 @@ r = 3: serial and 2 ranks), all in one run. Writes bench/results/quality.md,
 quality.json and one histogram of face non-orthogonality per tutorial
 (serial, r = 2).
 
-Usage: bench/quality [--work DIR] [--tutorials sphere,shaft] [--levels 2]
+Usage: bench/run --quality [--work DIR] [--tutorials sphere,shaft] [--levels 2]
                      [--variants "hxt + pass"]
 """
 
@@ -21,10 +21,10 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "tests", "tutorials"))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
-from tutorialCase import PolyMeshFiles  # noqa: E402
-import benchCase as bc  # noqa: E402
+from foamCase import PolyMeshFiles  # noqa: E402
+import foamCase as fc  # noqa: E402
 
 VARIANTS = [
     ("netgen", {"volumeMesher": "netgen", "optimisationSteps": 3}),
@@ -36,11 +36,11 @@ RANKS = {2: [1, 2, 4], 3: [1, 2]}
 
 def make_case(work, tutorial, r, variant, entries, np):
     name = "%s-r%d-%s-np%d" % (tutorial, r, variant.replace(" + ", "-"), np)
-    case = bc.copy_tutorial(tutorial, os.path.join(work, name),
-                            bc.RUN_LEFTOVERS + ("[1-9]*", ".*"))
-    bc.set_entry(os.path.join(case, "system", "pmshDict"), "refinementLevels", r)
+    case = fc.copy_tutorial(tutorial, os.path.join(work, name),
+                            fc.RUN_LEFTOVERS + ("[1-9]*", ".*"))
+    fc.set_entry(os.path.join(case, "system", "pmshDict"), "refinementLevels", r)
     for key, value in entries.items():
-        bc.set_entry(os.path.join(case, "system", "pmshDict"), key, value)
+        fc.set_entry(os.path.join(case, "system", "pmshDict"), key, value)
     return case
 
 
@@ -51,7 +51,7 @@ def run(argv, case, log):
 
 
 def check_mesh(case, np):
-    c = bc.check_mesh(case, np)
+    c = fc.check_mesh(case, np)
     return {
         "cells": c.get("cells", 0),
         "maxNonOrth": c.get("maxNonOrtho", float("nan")),
@@ -128,12 +128,11 @@ def main():
                 for variant, entries in variants:
                     case = make_case(work, tutorial, r, variant, entries, np)
                     start = time.time()
-                    code = run(bc.mpi(np, [pmsh, "-case", case]), case, "log.pmshFoam")
+                    code = run(fc.mpi(np, [pmsh, "-case", case]), case, "log.pmshFoam")
                     row = {"tutorial": tutorial, "r": r, "variant": variant, "ranks": np,
                            "case": case, "wall": time.time() - start, "failed": code != 0}
                     if code == 0:
-                        with open(os.path.join(case, "postProcessing", "pmshFoam", "summary.json")) as f:
-                            summary = json.load(f)
+                        summary = fc.summary(case)
                         row.update(check_mesh(case, np))
                         row["fineTime"] = summary["fineTime"]
                         row["volumeTime"] = summary["stages"]["volume"]["seconds"]
@@ -173,7 +172,7 @@ def main():
     lines = [
         "# Mesh quality and speed: netgen, hxt, hxt + quality pass",
         "",
-        "Produced by `bench/quality` on %s UTC, on %d cores shared with other work"
+        "Produced by `bench/run --quality` on %s UTC, on %d cores shared with other work"
         " (times are wall times of one run, all cases run one after the other)."
         % (time.strftime("%Y-%m-%d %H:%M", time.gmtime()), os.cpu_count()),
         "",

@@ -32,6 +32,8 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools"))
+import foamCase as fc  # noqa: E402
 import pmshBench as pb  # noqa: E402
 
 GEOMETRIES = pb.GEOMETRIES
@@ -139,8 +141,7 @@ def coarse_quality(args, geom, coarse_mesher, volume_mesher, levels=2, ranks=2):
     if not run.ok:
         row["error"] = pb.first_error(run.text())
         return row
-    with open(os.path.join(case, "postProcessing", "pmshFoam", "summary.json")) as f:
-        s = json.load(f)
+    s = fc.summary(case)
     ok, non_ortho, avg_non_ortho, skew, _ = check_mesh(case, ranks)
     row.update({"coarseCells": s["coarseCells"], "fineCells": s["fineCells"],
                 "meshOK": ok, "maxNonOrtho": non_ortho, "avgNonOrtho": avg_non_ortho,
@@ -370,8 +371,7 @@ def mode_massive(args):
         pb.log("FAILED: %s" % res["error"])
         write_json(args, "massive.json", res)
         return
-    with open(os.path.join(case, "postProcessing", "pmshFoam", "summary.json")) as f:
-        s = json.load(f)
+    s = fc.summary(case)
     res["summary"] = s
     written = sum(directory_bytes(os.path.join(case, "processor%d" % p))
                   for p in range(m["ranks"]))
@@ -557,13 +557,11 @@ def run_scaling_case(args, ranks, levels, volume, coarse_mesher, h=None, tag="")
     row = {"ranks": ranks, "r": levels, "maxCellSize": h, "volumeMesher": volume,
            "coarseMesher": coarse_mesher, "wallTime": run.wall, "load": run.load_before,
            "waitedForLoad": waited}
-    summary = os.path.join(case, "postProcessing", "pmshFoam", "summary.json")
-    if not run.ok or not os.path.exists(summary):
+    s = fc.summary(case)
+    if not run.ok or s is None:
         row["error"] = pb.first_error(run.text()) or run.tail()
         pb.log("    FAILED P=%d: %s" % (ranks, row["error"]))
         return row
-    with open(summary) as f:
-        s = json.load(f)
     # The cores the run had: CPU seconds of the whole command over its wall
     # time and ranks (below 1: other work shared the cores)
     cpu = cpu_seconds(run.timefile)

@@ -27,9 +27,9 @@ import subprocess
 BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(BENCH_DIR)
 sys.path.insert(0, BENCH_DIR)
-sys.path.insert(0, os.path.join(ROOT, "tests", "tutorials"))
-import benchCase as bc  # noqa: E402
-from tutorialCase import PolyMeshFiles  # noqa: E402
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+import foamCase as fc  # noqa: E402
+from foamCase import PolyMeshFiles  # noqa: E402
 
 RANKS = 2
 MESHERS = ("netgen", "hxt")
@@ -50,10 +50,10 @@ CASES = {
 
 def mesh(case, mesher, env):
     """pmshFoam with this volume mesher: (cells, wall seconds)"""
-    bc.set_entry(os.path.join(case, "system", "pmshDict"), "volumeMesher", mesher)
+    fc.set_entry(os.path.join(case, "system", "pmshDict"), "volumeMesher", mesher)
     start = time.time()
     with open(os.path.join(case, "log.pmshFoam"), "w") as out:
-        subprocess.run(bc.mpi(RANKS, ["pmshFoam", "-case", case]), cwd=case, env=env,
+        subprocess.run(fc.mpi(RANKS, ["pmshFoam", "-case", case]), cwd=case, env=env,
                        stdout=out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
                        check=True)
     return time.time() - start
@@ -146,15 +146,15 @@ def main():
     parser.add_argument("--out", default=os.path.join(BENCH_DIR, "results"))
     parser.add_argument("--work", default=None)
     args = parser.parse_args()
-    env = bc.environment()
+    env = fc.environment()
     work = args.work or tempfile.mkdtemp(prefix="pmsh-grading-")
     results = {}
     for name, spec in CASES.items():
         results[name] = {}
         for mesher in MESHERS:
-            case = bc.copy_tutorial(name, os.path.join(work, "%s-%s" % (name, mesher)))
+            case = fc.copy_tutorial(name, os.path.join(work, "%s-%s" % (name, mesher)))
             seconds = mesh(case, mesher, env)
-            quality = bc.check_mesh(case, RANKS, env)
+            quality = fc.check_mesh(case, RANKS, env)
             edges, counts = mean_edges(case, spec["bands"], spec["distance"])
             results[name][mesher] = {
                 "cells": quality.get("cells", 0), "seconds": seconds,

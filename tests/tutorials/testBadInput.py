@@ -40,9 +40,8 @@ import subprocess
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import openfoam_environment  # noqa: E402
-from testSerialTutorials import CaseTest  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest, environment, mpi  # noqa: E402
 
 #- Seconds a failing run may take: bad input is found in about a second.
 RUN_TIMEOUT = 90
@@ -120,7 +119,7 @@ def run_bounded(argv, cwd, env=None):
     Returns (exit code, output)."""
     proc = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                             stderr=subprocess.STDOUT, cwd=cwd,
-                            env=env or openfoam_environment(),
+                            env=env or environment(),
                             preexec_fn=limit_memory, start_new_session=True)
     try:
         out, _ = proc.communicate(timeout=RUN_TIMEOUT)
@@ -181,8 +180,7 @@ class BadInputTest(CaseTest):
         do, in UPstream::exit(1), i.e. MPI_Abort on every rank: mpirun then
         stops the ranks and exits non-zero, so its exit code stands for the
         ranks'."""
-        argv = ["mpirun", "--oversubscribe", "-np", str(np)] \
-            + self.pmshFoam_argv(case, args) + ["-parallel"]
+        argv = mpi(np, self.pmshFoam_argv(case, args))
         code, log = run_bounded(argv, case.root)
         self.check_output(log)
         return code, log
@@ -379,7 +377,7 @@ class badInput(BadInputTest, cases):
             # root reads anything: run as nobody, who may read the rest, and
             # a copy of OpenFOAM's etc/ (its controlDict is read at start;
             # the installation may be where nobody cannot read, below /root)
-            env = openfoam_environment()
+            env = environment()
             project = os.path.join(c.root, "OpenFOAM")
             shutil.copytree(os.path.join(env["WM_PROJECT_DIR"], "etc"),
                             os.path.join(project, "etc"))

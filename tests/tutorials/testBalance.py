@@ -3,7 +3,7 @@ the fine cells (max/mean <= 1.05), for every tutorial at r = 2 (hxt, the
 fast backend, and netgen, whose interior sizes vary most from part to
 part; the counts come from the processor meshes themselves), and the
 moves that get there (stage 6) leave a mesh checkMesh -parallel accepts.
-bench/balance measures P = 2..64 and both backends.
+bench/run --balance measures P = 2..64 and both backends.
 
 Run one test:  python3 testBalance.py balance.test_sphereNp4
 """
@@ -12,9 +12,8 @@ import os
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import PolyMeshFiles  # noqa: E402
-from testSerialTutorials import CaseTest  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest, PolyMeshFiles  # noqa: E402
 
 
 class balance(CaseTest):

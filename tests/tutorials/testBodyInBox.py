@@ -7,18 +7,16 @@ reports the points the fold repair left off the geometry.
 Run one test:  python3 testBodyInBox.py bodyInBox.test_stlNp2
 """
 
-import json
 import os
 import re
 import shutil
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import SOURCE_DIR, cells_in_checkmesh_log  # noqa: E402
-from testSerialTutorials import CaseTest  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest, ROOT, cells_in_checkmesh_log  # noqa: E402
 
-GEOMETRY = os.path.join(SOURCE_DIR, "tests", "data", "geometry")
+GEOMETRY = os.path.join(ROOT, "tests", "data", "geometry")
 PATCHES = {"inlet": "patch", "outlet": "patch", "sides": "patch", "body": "wall"}
 
 FIELD = """FoamFile
@@ -84,9 +82,8 @@ class bodyInBox(CaseTest):
             text = f.read()
         for name, kind in PATCHES.items():
             self.assertRegex(text, r"(?s)\b%s\s*\{\s*type\s+%s;" % (name, kind))
-        with open(os.path.join(c.dir, "postProcessing", "pmshFoam", "summary.json")) as f:
-            summary = json.load(f)
-        # The estimate after stage 1 within its band (bench/estimates),
+        summary = c.summary()
+        # The estimate after stage 1 within its band (bench/run --estimates),
         # with the shares of its terms
         ratio = summary["estimatedFineCells"] / summary["fineCells"]
         if estimate_within_band:

@@ -8,12 +8,11 @@ passes by retrying is no fast mode).
 Run one test:  python3 testFastMode.py fastMode.test_sphere
 """
 
-import json
 import os
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 from testParallelTutorials import ParallelCaseTest  # noqa: E402
 
 
@@ -25,8 +24,7 @@ class fastMode(ParallelCaseTest):
         with open(os.path.join(c.dir, "log.pmshFoam")) as f:
             retried = [line for line in f if "at attempt" in line]
         self.assertEqual(retried, [], "partitions meshed by a retry")
-        with open(os.path.join(c.dir, "postProcessing", "pmshFoam", "summary.json")) as f:
-            summary = json.load(f)
+        summary = c.summary()
         self.assertEqual(summary["volumeAttemptsPerRank"], [1, 1])
         self.assertEqual(summary["volumeMesherPerRank"], ["hxt", "hxt"])
 

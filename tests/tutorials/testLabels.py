@@ -16,9 +16,8 @@ import os
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from testSerialTutorials import CaseTest  # noqa: E402
-from tutorialCase import cells_in_checkmesh_log  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest, cells_in_checkmesh_log  # noqa: E402
 
 LABEL_SIZE = int(os.environ.get("WM_LABEL_SIZE", "32"))
 

@@ -7,15 +7,13 @@ errors a user meets (layers on a patch that is not a wall).
 Run one test:  python3 testLayers.py layers.test_pipeAllrunGivesPressureDropWithin2Percent
 """
 
-import json
 import os
 import re
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import cells_in_checkmesh_log  # noqa: E402
-from testSerialTutorials import CaseTest  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest, cells_in_checkmesh_log  # noqa: E402
 from testBodyInBox import bodyInBox  # noqa: E402
 
 
@@ -30,11 +28,6 @@ def set_patches(case, patches):
         text += "\npatches\n{\n%s}\n" % body
     with open(path, "w") as f:
         f.write(text)
-
-
-def summary(case):
-    with open(os.path.join(case.dir, "postProcessing", "pmshFoam", "summary.json")) as f:
-        return json.load(f)
 
 
 def prism_cells(case, np):
@@ -97,7 +90,7 @@ class layers(CaseTest):
         self.assertRegex(log, r"(?m)^\s*body\s+\d+\s+3\s+100(\.0)? %")
         text = c.check_mesh(np=2)
         self.assertRegex(text, r"prisms:\s+[1-9]\d*")
-        s = summary(c)
+        s = c.summary()
         body = s["layers"]["body"]
         self.assertEqual(body["layers"], 3)
         self.assertEqual(body["coverage"], 1)

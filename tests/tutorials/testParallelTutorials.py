@@ -8,15 +8,13 @@ Run one test:  python3 testParallelTutorials.py sphere.test_np2
 """
 
 import filecmp
-import json
 import os
 import re
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import PolyMeshFiles, cells_in_checkmesh_log  # noqa: E402
-from testSerialTutorials import CaseTest  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest, PolyMeshFiles, cells_in_checkmesh_log  # noqa: E402
 
 
 def write_list_file(path, cls, obj, items, fmt):
@@ -142,8 +140,7 @@ class parallelRun(ParallelCaseTest):
             skew = re.search(r"Max skewness =\s*([\d.]+)", text)
             aspect = re.search(r"Max aspect ratio =\s*([\d.]+)", text)
             quality[backend] = (float(non_orth.group(1)), float(skew.group(1)))
-            with open(os.path.join(c.dir, "postProcessing/pmshFoam/summary.json")) as f:
-                s = json.load(f)
+            s = c.summary()
             self.assertEqual(s["volumeMesherPerRank"], [backend, backend])
             q = s["quality"]
             self.assertAlmostEqual(q["maxNonOrthogonality"], float(non_orth.group(1)), places=4)

@@ -16,8 +16,8 @@ import re
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from testSerialTutorials import CaseTest  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest  # noqa: E402
 
 MATCH = r"Coupled point location match \(average [0-9.e+-]+\) OK"
 

@@ -5,75 +5,15 @@ boundary lies on the geometry. (Bad input: testBadInput.py.)
 Run one test:  python3 testSerialTutorials.py sphere.test_meshOkAtEachLevelAscii
 """
 
-import json
 import math
 import os
 import re
-import shutil
 import sys
 import time
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import SOURCE_DIR, TutorialCase, cells_in_checkmesh_log, openfoam_environment  # noqa: E402
-
-
-class CaseTest(unittest.TestCase):
-    """Creates cases that are removed after a passing test (kept on failure
-    for inspection)."""
-
-    def setUp(self):
-        self.cases = []
-
-    def tearDown(self):
-        failed = not self._outcome.success
-        for case in self.cases:
-            if failed:
-                print("kept for inspection: " + case.dir)
-            else:
-                case.cleanup()
-
-    def case(self, name, **entries):
-        c = TutorialCase(name, **entries)
-        self.cases.append(c)
-        return c
-
-    def geometry_case(self, geometry, wall_patch=None, **entries):
-        """tutorials/sphere meshing tests/data/geometry/<geometry> instead:
-        no patches entry (every patch as the geometry names it), and 0/U
-        and 0/p with the sphere's `walls` entry renamed wall_patch, or no
-        0/ at all without one."""
-        c = self.case("sphere", **entries)
-        shutil.copy(os.path.join(SOURCE_DIR, "tests", "data", "geometry", geometry),
-                    os.path.join(c.dir, "constant", "geometry", geometry))
-        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/%s"' % geometry)
-        path = os.path.join(c.dir, "system", "pmshDict")
-        with open(path) as f:
-            text = re.sub(r"(?ms)^patches\s*\{.*?^\}", "", f.read())
-        with open(path, "w") as f:
-            f.write(text)
-        if wall_patch is None:
-            shutil.rmtree(os.path.join(c.dir, "0"), ignore_errors=True)
-            return c
-        for field in ("U", "p"):
-            path = os.path.join(c.dir, "0", field)
-            with open(path) as f:
-                text = f.read().replace("    walls\n", "    %s\n" % wall_patch)
-            with open(path, "w") as f:
-                f.write(text)
-        return c
-
-    def mesh_levels(self, name, levels, fmt="ascii", **entries):
-        """Mesh tutorial `name` at each level; checkMesh must pass. Returns
-        {level: (case, cells)}."""
-        result = {}
-        for r in levels:
-            c = self.case(name, refinementLevels=r, **entries)
-            c.write_format(fmt)
-            c.run("pmshFoam")
-            log = c.check_mesh()
-            result[r] = (c, cells_in_checkmesh_log(log))
-        return result
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest, cells_in_checkmesh_log  # noqa: E402
 
 
 class sphere(CaseTest):
@@ -106,8 +46,7 @@ class sphere(CaseTest):
         c.run("pmshFoam")
         wall = time.monotonic() - started
         cells = cells_in_checkmesh_log(c.check_mesh())
-        with open(os.path.join(c.dir, "postProcessing/pmshFoam/summary.json")) as f:
-            s = json.load(f)
+        s = c.summary()
         self.assertEqual(s["fineCells"], cells)
         self.assertEqual(s["fineCellsPerRank"], [cells])
         self.assertEqual(s["volumeMesherPerRank"], ["netgen"])
@@ -144,8 +83,7 @@ class sphere(CaseTest):
             text = c.check_mesh()
             non_orth = re.search(r"non-orthogonality Max:\s*([\d.]+)\s+average:\s*([\d.]+)", text)
             skew = re.search(r"Max skewness =\s*([\d.]+)", text)
-            with open(os.path.join(c.dir, "postProcessing/pmshFoam/summary.json")) as f:
-                q = json.load(f)["quality"]
+            q = c.summary()["quality"]
             self.assertAlmostEqual(q["maxNonOrthogonality"], float(non_orth.group(1)), places=4, msg=mesher)
             self.assertAlmostEqual(q["avgNonOrthogonality"], float(non_orth.group(2)), places=4, msg=mesher)
             self.assertAlmostEqual(q["maxSkewness"], float(skew.group(1)), places=4, msg=mesher)

@@ -8,14 +8,13 @@ pass after HXT is what this holds.
 Run one test:  python3 testSharpTips.py sharpTips.test_coneInBoxHxtOnTwoRanks
 """
 
-import json
 import os
 import re
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from testSerialTutorials import CaseTest  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest  # noqa: E402
 
 
 
@@ -29,8 +28,7 @@ class sharpTips(CaseTest):
     def test_coneInBoxHxtOnTwoRanks(self):
         c = self.cone_case(refinementLevels=1, volumeMesher="hxt")
         c.run("pmshFoam", np=2)
-        with open(os.path.join(c.dir, "postProcessing/pmshFoam/summary.json")) as f:
-            summary = json.load(f)
+        summary = c.summary()
         self.assertEqual(summary["volumeMesherPerRank"], ["hxt", "hxt"])
         text = c.check_mesh(np=2)
         worst = float(re.search(r"non-orthogonality Max:\s*([\d.]+)", text).group(1))

@@ -11,9 +11,8 @@ import re
 import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import cells_in_checkmesh_log  # noqa: E402
-from testSerialTutorials import CaseTest  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest, cells_in_checkmesh_log  # noqa: E402
 
 REFERENCE_CD = 1.087     # Johnson & Patel 1999, sphere at Re = 100
 

@@ -25,9 +25,8 @@ import time
 import unittest
 import uuid
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from tutorialCase import openfoam_environment  # noqa: E402
-from testSerialTutorials import CaseTest  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest, environment, mpi  # noqa: E402
 
 TOKEN = "PMSH_STAGE4_TEST_TOKEN"
 
@@ -70,10 +69,8 @@ class stopping(CaseTest):
         (for hxt a fresh process of pmshFoam)."""
         c = self.case("sphere", refinementLevels=3 if mesher == "netgen" else 4,
                       volumeMesher=mesher)
-        argv = [c.pmshFoam, "-case", c.dir]
-        if np > 1:
-            argv = ["mpirun", "--oversubscribe", "-np", str(np)] + argv + ["-parallel"]
-        env = openfoam_environment()
+        argv = mpi(np, [c.pmshFoam, "-case", c.dir])
+        env = environment()
         env[TOKEN] = token
         log = os.path.join(c.dir, "log.pmshFoam")
         with open(log, "w") as out:

@@ -26,8 +26,9 @@ import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
+from foamCase import CaseTest  # noqa: E402
 sys.path.insert(0, os.path.join(HERE, "..", "data", "geometry"))
-from testSerialTutorials import CaseTest  # noqa: E402
 from makeGeometry import curved_wall, volume, write_ascii  # noqa: E402
 
 GEOMETRY = os.path.join(HERE, "..", "data", "geometry")

@@ -5,7 +5,7 @@ others (an exploded view), so that both the fine surface and the partition
 show. Reads the boundary faces of processor*/constant/polyMesh with the
 tests' reader; draws with matplotlib (Debian's python3-matplotlib).
 
-    bench/picture [--np 8] [--r 1] [--out bench/results/partition.png]
+    bench/run --picture [--np 8] [--r 1] [--out bench/results/partition.png]
 """
 
 import argparse
@@ -23,18 +23,18 @@ import numpy as np                                              # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection         # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "tests", "tutorials"))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
-from tutorialCase import PolyMeshFiles                          # noqa: E402
-import benchCase as bc                                          # noqa: E402
+from foamCase import PolyMeshFiles                          # noqa: E402
+import foamCase as fc                                          # noqa: E402
 
 
 def mesh(tutorial, np_, r, work, env):
     """pmshFoam on a copy of the tutorial; returns the case directory."""
-    case = bc.copy_tutorial(tutorial, os.path.join(work, tutorial))
+    case = fc.copy_tutorial(tutorial, os.path.join(work, tutorial))
     dict_file = os.path.join(case, "system", "pmshDict")
-    bc.set_entry(dict_file, "refinementLevels", r)
-    bc.set_entry(dict_file, "volumeMesher", "hxt")
+    fc.set_entry(dict_file, "refinementLevels", r)
+    fc.set_entry(dict_file, "volumeMesher", "hxt")
     subprocess.run(["mpirun", "--oversubscribe", "-np", str(np_), "pmshFoam",
                     "-case", case, "-parallel"], env=env, check=True,
                    stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL)
@@ -87,7 +87,7 @@ def main():
     parser.add_argument("--out", default=os.path.join(ROOT, "bench", "results", "partition.png"))
     args = parser.parse_args()
 
-    env = bc.environment()
+    env = fc.environment()
     work = tempfile.mkdtemp(prefix="pmshPicture-")
     try:
         fig = plt.figure(figsize=(12, 5), dpi=90)

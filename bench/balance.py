@@ -5,10 +5,10 @@ times). Results go to bench/results/balance.json under a label, and
 bench/results/balance.md is rewritten from all labels there, so that a
 "before" from an older pmshFoam sits next to the "after":
 
-    bench/balance --label after                       # this build
-    bench/balance --label before --pmshFoam OLD/pmshFoam
-    bench/balance --meshers netgen --np 2,4,8,16      # another row set
-    bench/balance --rewrite                           # only the report
+    bench/run --balance --label after                       # this build
+    bench/run --balance --label before --pmshFoam OLD/pmshFoam
+    bench/run --balance --meshers netgen --np 2,4,8,16      # another row set
+    bench/run --balance --rewrite                           # only the report
 
 Not part of the tests (tests/tutorials/testBalance.py asserts P = 2, 4).
 """
@@ -25,16 +25,17 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "bench"))
-import benchCase as bc  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools"))
+import foamCase as fc  # noqa: E402
 RESULTS = os.path.join(ROOT, "bench", "results")
 TUTORIALS = ("sphere", "shaft", "sphereSTL")
 
 
 def run_case(pmshFoam, tutorial, mesher, np, r, work, env):
-    case = bc.copy_tutorial(tutorial, os.path.join(work, "%s-%s-%d" % (tutorial, mesher, np)))
+    case = fc.copy_tutorial(tutorial, os.path.join(work, "%s-%s-%d" % (tutorial, mesher, np)))
     dict_file = os.path.join(case, "system", "pmshDict")
-    bc.set_entry(dict_file, "refinementLevels", r)
-    bc.set_entry(dict_file, "volumeMesher", mesher)
+    fc.set_entry(dict_file, "refinementLevels", r)
+    fc.set_entry(dict_file, "volumeMesher", mesher)
     argv = ["mpirun", "--oversubscribe", "-np", str(np), pmshFoam, "-case", case, "-parallel"]
     proc = subprocess.run(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, env=env)
@@ -83,7 +84,7 @@ def report(results):
         return ""
 
     out = ["# Rank balance: max/mean fine cells per rank, r = 2", "",
-           "Produced by `bench/balance` (rewritten %s UTC). Each entry is the largest"
+           "Produced by `bench/run --balance` (rewritten %s UTC). Each entry is the largest"
            % time.strftime("%Y-%m-%d %H:%M", time.gmtime()),
            "rank's fine cells over the mean (`fineCellsPerRank` of",
            "postProcessing/pmshFoam/summary.json); target <= 1.05. Runs are",
@@ -159,7 +160,7 @@ def main():
             results = json.load(f)
 
     if not args.rewrite:
-        env = bc.environment()
+        env = fc.environment()
         pmshFoam = args.pmshFoam
         if not pmshFoam:
             subprocess.run(["./Allwmake"], cwd=ROOT, env=env, check=True,
