@@ -36,19 +36,17 @@ def run_case(pmshFoam, tutorial, mesher, np, r, work, env):
     dict_file = os.path.join(case, "system", "pmshDict")
     fc.set_entry(dict_file, "refinementLevels", r)
     fc.set_entry(dict_file, "volumeMesher", mesher)
-    argv = ["mpirun", "--oversubscribe", "-np", str(np), pmshFoam, "-case", case, "-parallel"]
+    argv = fc.mpi(np, [pmshFoam, "-case", case])
     proc = subprocess.run(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, env=env)
     log = proc.stdout.decode(errors="replace")
     row = {"tutorial": tutorial, "mesher": mesher, "np": np, "r": r}
-    summary = os.path.join(case, "postProcessing", "pmshFoam", "summary.json")
-    if proc.returncode != 0 or not os.path.exists(summary):
+    s = fc.summary(case)
+    if proc.returncode != 0 or s is None:
         lines = [l.strip() for l in log.splitlines() if l.strip()]
         fatal = [i for i, l in enumerate(lines) if "FATAL" in l]
         row["failed"] = lines[fatal[0] + 1] if fatal else "exit code %d" % proc.returncode
         return row
-    with open(summary) as f:
-        s = json.load(f)
     fine = s["fineCellsPerRank"]
     row.update(coarseCells=s["coarseCells"], fineCells=s["fineCells"],
                fineCellsPerRank=fine, maxOverMean=max(fine) * len(fine) / sum(fine))

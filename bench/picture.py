@@ -10,7 +10,6 @@ tests' reader; draws with matplotlib (Debian's python3-matplotlib).
 
 import argparse
 import os
-import re
 import shutil
 import subprocess
 import sys
@@ -35,8 +34,7 @@ def mesh(tutorial, np_, r, work, env):
     dict_file = os.path.join(case, "system", "pmshDict")
     fc.set_entry(dict_file, "refinementLevels", r)
     fc.set_entry(dict_file, "volumeMesher", "hxt")
-    subprocess.run(["mpirun", "--oversubscribe", "-np", str(np_), "pmshFoam",
-                    "-case", case, "-parallel"], env=env, check=True,
+    subprocess.run(fc.mpi(np_, ["pmshFoam", "-case", case]), env=env, check=True,
                    stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL)
     return case
 
@@ -97,8 +95,7 @@ def main():
             parts = part_surfaces(case, args.np)
             ax = fig.add_axes([0, 0, 0.4, 0.93] if i == 0 else [0.4, 0, 0.6, 0.93],
                               projection="3d")
-            with open(os.path.join(case, "postProcessing", "pmshFoam", "summary.json")) as f:
-                fine = int(re.search(r'"fineCells":\s*(\d+)', f.read()).group(1))
+            fine = fc.summary(case)["fineCells"]
             draw(ax, parts, explode, "%s: %d cells on %d ranks (r = %d)"
                  % (tutorial, fine, args.np, args.r), view, zoom)
         fig.savefig(args.out)
