@@ -84,7 +84,7 @@ std::string pmsh::validRange(double lo, double hi)
 {
     std::ostringstream os;
     os  << "Valid values are ";
-    if (lo == std::numeric_limits<double>::min())
+    if (lo == aboveZero)
     {
         os  << "> 0";
     }
@@ -153,6 +153,23 @@ Foam::OSstream& pmsh::entryChecks::error
         e ? e->startLineNumber() : d.startLineNumber(),
         e ? e->endLineNumber() : d.endLineNumber()
     );
+}
+
+
+void pmsh::entryChecks::require
+(
+    const Foam::dictionary& d,
+    const char* key,
+    const std::string& owner,
+    const std::string& valid
+) const
+{
+    if (!foam::findEntry(d, key))
+    {
+        error(d, key)
+            << "Entry '" << key << "' not found in " << owner.c_str() << '\n'
+            << valid.c_str() << Foam::exit(Foam::FatalIOError);
+    }
 }
 
 
@@ -239,13 +256,8 @@ pmsh::point3 pmsh::entryChecks::point
     const std::string valid =
         "Entry '" + std::string(key) + "' of " + owner
       + " must be a point (x y z), e.g. " + key + " (0 0 0);";
+    require(d, key, owner, valid);
     const Foam::entry* e = foam::findEntry(d, key);
-    if (!e)
-    {
-        error(d, key)
-            << "Entry '" << key << "' not found in " << owner.c_str() << '\n'
-            << valid.c_str() << Foam::exit(Foam::FatalIOError);
-    }
     const bool stream = e->isStream();
     Foam::ITstream* is = stream ? &e->stream() : nullptr;
     bool ok =

@@ -117,21 +117,13 @@ double localSize
         "maxCellSize of " + owner + " must be a number > 0: the largest"
         " coarse cell size there, in the units of the geometry (a size"
         " larger than the global maxCellSize does not refine)";
-    const entry* e = foam::findEntry(sub, "maxCellSize");
-    if (!e)
+    if (required)
     {
-        if (required)
-        {
-            check.error(sub, "maxCellSize")
-                << "Entry 'maxCellSize' not found in " << owner.c_str()
-                << '\n' << valid.c_str() << Foam::exit(Foam::FatalIOError);
-        }
-        return 0;
+        check.require(sub, "maxCellSize", owner, valid);
     }
     return check.bounded
     (
-        sub, "maxCellSize", 0, std::numeric_limits<double>::min(),
-        std::numeric_limits<double>::max(), false, valid
+        sub, "maxCellSize", 0, aboveZero, std::numeric_limits<double>::max(), false, valid
     );
 }
 
@@ -146,16 +138,10 @@ double readPositive
 {
     const std::string valid =
         "Entry '" + std::string(key) + "' of " + owner + " must be a number > 0";
-    if (!foam::findEntry(region, key))
-    {
-        check.error(region, key)
-            << "Entry '" << key << "' not found in " << owner.c_str() << '\n'
-            << valid.c_str() << Foam::exit(Foam::FatalIOError);
-    }
+    check.require(region, key, owner, valid);
     return check.bounded
     (
-        region, key, 0, std::numeric_limits<double>::min(),
-        std::numeric_limits<double>::max(), false, valid
+        region, key, 0, aboveZero, std::numeric_limits<double>::max(), false, valid
     );
 }
 
@@ -437,7 +423,7 @@ meshSettings readMeshSettings
     }
     s.maxCellSize = check.bounded
     (
-        dict, "maxCellSize", 0, std::numeric_limits<double>::min(),
+        dict, "maxCellSize", 0, aboveZero,
         std::numeric_limits<double>::max(), false, validSize
     );
 
@@ -497,14 +483,14 @@ meshSettings readMeshSettings
         << " curvature sizing may ask for (default maxCellSize/8)";
     s.minCellSize = check.bounded
     (
-        dict, "minCellSize", s.maxCellSize/8, std::numeric_limits<double>::min(),
+        dict, "minCellSize", s.maxCellSize/8, aboveZero,
         s.maxCellSize, false, validMinCellSize.str()
     );
 
     // 0 (absent): from the STL's size, when it is known (stlGeometry)
     s.coarseTimeLimit = check.bounded
     (
-        dict, "coarseTimeLimit", 0, std::numeric_limits<double>::min(), 1e7,
+        dict, "coarseTimeLimit", 0, aboveZero, 1e7,
         false,
         "Valid values are numbers 0 < coarseTimeLimit <= 1e7: the seconds each"
         " attempt of Netgen's STL coarse mesh may take (all attempts together"

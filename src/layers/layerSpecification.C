@@ -28,20 +28,21 @@ const char* const thicknessEntries[] =
 const entryChecks check(where);
 
 
-//- Entry `key` of patch patchName, checked against [lo, hi]: lo of the
-//  smallest positive double stands for > 0
+//- Entry `key` of patch patchName, checked against [lo, hi] (aboveZero:
+//  > 0); deflt where the patch has none
 double boundedEntry
 (
     const Foam::dictionary& d,
     const std::string& patchName,
     const char* key,
+    double deflt,
     double lo,
     double hi
 )
 {
     return check.bounded
     (
-        d, key, 0, lo, hi, false, validRange(lo, hi),
+        d, key, deflt, lo, hi, false, validRange(lo, hi),
         " of patch '" + patchName + "'"
     );
 }
@@ -181,11 +182,12 @@ layerSpecification readLayerSpecification
             << '\n' << choices.c_str() << Foam::exit(Foam::FatalIOError);
     }
 
-    const double positive = std::numeric_limits<double>::min();
-    const double huge = std::numeric_limits<double>::max();
     auto thickness = [&](const char* key)
     {
-        return foam::found(d, key) ? boundedEntry(d, patchName, key, positive, huge) : 0;
+        return boundedEntry
+        (
+            d, patchName, key, 0, aboveZero, std::numeric_limits<double>::max()
+        );
     };
     const double first = thickness("firstLayerThickness");
     const double finalLayer = thickness("finalLayerThickness");
@@ -194,9 +196,10 @@ layerSpecification readLayerSpecification
 
     if (given.size() == 1)
     {
-        const double r = ratioGiven
-            ? boundedEntry(d, patchName, "expansionRatio", 1, maxExpansionRatio)
-            : spec.expansionRatio;
+        const double r = boundedEntry
+        (
+            d, patchName, "expansionRatio", spec.expansionRatio, 1, maxExpansionRatio
+        );
         spec.expansionRatio = r;
         spec.firstLayerThickness =
             first > 0 ? first
@@ -239,22 +242,16 @@ layerSpecification readLayerSpecification
         spec.firstLayerThickness = first > 0 ? first : finalLayer/std::pow(r, L - 1);
     }
 
-    spec.minThickness = foam::found(d, "minThickness")
-        ? boundedEntry(d, patchName, "minThickness", 0, spec.totalThickness())
-        : spec.firstLayerThickness;
-    if (foam::found(d, "featureAngle"))
-    {
-        spec.featureAngle = boundedEntry(d, patchName, "featureAngle", 0, 180);
-    }
-    if (foam::found(d, "maxThicknessToGapRatio"))
-    {
-        spec.maxThicknessToGapRatio =
-            boundedEntry
-            (
-                d, patchName, "maxThicknessToGapRatio",
-                std::numeric_limits<double>::min(), 0.5
-            );
-    }
+    spec.minThickness = boundedEntry
+    (
+        d, patchName, "minThickness", spec.firstLayerThickness, 0, spec.totalThickness()
+    );
+    spec.featureAngle =
+        boundedEntry(d, patchName, "featureAngle", spec.featureAngle, 0, 180);
+    spec.maxThicknessToGapRatio = boundedEntry
+    (
+        d, patchName, "maxThicknessToGapRatio", spec.maxThicknessToGapRatio, aboveZero, 0.5
+    );
     return spec;
 }
 
