@@ -368,6 +368,18 @@ def run(cmd, cwd, logname, np=1, timeout=None):
     return proc.returncode == 0, wall, text
 
 
+def run_in_turn(steps):
+    """Each step (a function returning (ok, wall seconds, log text) as run
+    does) until one fails: (ok, the steps' wall seconds, the last log)"""
+    wall = 0.0
+    for step in steps:
+        ok, w, text = step()
+        wall += w
+        if not ok:
+            break
+    return ok, wall, text
+
+
 def new_case(study, path):
     pb.copy_case(study.tutorial, path, ignore=(), parts=("0", "constant", "system"))
 
@@ -387,14 +399,10 @@ def build_pmsh(study, m, case, np):
     if m["builder"] == "pmsh":
         return run(["pmshFoam"], case, "log.pmshFoam", np=np)
     # The dual: pmshFoam serially, polyDualMesh, decomposePar
-    ok, wall, text = run(["pmshFoam"], case, "log.pmshFoam")
-    if not ok:
-        return ok, wall, text
-    ok, wall2, text = run(["polyDualMesh", "60", "-overwrite"], case, "log.polyDualMesh")
-    if not ok:
-        return ok, wall + wall2, text
-    ok, wall3, text = decompose(case, np)
-    return ok, wall + wall2 + wall3, text
+    return run_in_turn((lambda: run(["pmshFoam"], case, "log.pmshFoam"),
+                        lambda: run(["polyDualMesh", "60", "-overwrite"], case,
+                                    "log.polyDualMesh"),
+                        lambda: decompose(case, np)))
 
 
 def build_snappy(study, m, case, np):
@@ -406,36 +414,24 @@ def build_snappy(study, m, case, np):
     snappy_dict = os.path.join(case, "system", "snappyHexMeshDict")
     for key, value in m["entries"].items():
         pb.set_entry(snappy_dict, key, value)
-    if m.get("parallel"):
-        return build_snappy_parallel(case, np)
-    wall = 0.0
-    for cmd, logname in ((["blockMesh"], "log.blockMesh"),
-                         (["snappyHexMesh", "-overwrite"], "log.snappyHexMesh")):
-        ok, w, text = run(cmd, case, logname)
-        wall += w
-        if not ok:
-            return ok, wall, text
-    ok, w, text = decompose(case, np)
-    return ok, wall + w, text
-
-
-def build_snappy_parallel(case, np):
-    """blockMesh, decomposePar and snappyHexMesh on np ranks, then the
-    case's 0/ in every processor directory (as OpenFOAM's motorBike
-    tutorial does: the fields are uniform, and their constraint types come
-    from setConstraintTypes)"""
-    wall = 0.0
-    for step in (lambda: run(["blockMesh"], case, "log.blockMesh"),
-                 lambda: decompose(case, np),
-                 lambda: run(["snappyHexMesh", "-overwrite"], case, "log.snappyHexMesh", np=np)):
-        ok, w, text = step()
-        wall += w
-        if not ok:
-            return ok, wall, text
-    for d in glob.glob(os.path.join(case, "processor*")):
-        shutil.rmtree(os.path.join(d, "0"), ignore_errors=True)
-        shutil.copytree(os.path.join(case, "0"), os.path.join(d, "0"))
-    return True, wall, text
+    block_mesh = lambda: run(["blockMesh"], case, "log.blockMesh")  # noqa: E731
+    if not m.get("parallel"):
+        return run_in_turn((block_mesh,
+                            lambda: run(["snappyHexMesh", "-overwrite"], case,
+                                        "log.snappyHexMesh"),
+                            lambda: decompose(case, np)))
+    # On np ranks: decomposed first, then the case's 0/ in every processor
+    # directory (as OpenFOAM's motorBike tutorial does: the fields are
+    # uniform, and their constraint types come from setConstraintTypes)
+    done = run_in_turn((block_mesh,
+                        lambda: decompose(case, np),
+                        lambda: run(["snappyHexMesh", "-overwrite"], case,
+                                    "log.snappyHexMesh", np=np)))
+    if done[0]:
+        for d in glob.glob(os.path.join(case, "processor*")):
+            shutil.rmtree(os.path.join(d, "0"), ignore_errors=True)
+            shutil.copytree(os.path.join(case, "0"), os.path.join(d, "0"))
+    return done
 
 
 def snappy_layer_coverage(case, patch):
@@ -606,7 +602,7 @@ def build_mesh(args, study, m, res):
     pb.log("    %d cells in %.1f s, checkMesh %s, max non-orth %.1f" % (
         record.get("cells", 0), wall, "OK" if record["meshOK"] else "FAILED",
         record.get("maxNonOrtho", float("nan"))))
-    if getattr(args, "gradients", True):
+    if args.gradients:
         record["gradientError"] = {}
         for grad in ("Gauss linear", "leastSquares"):
             record["gradientError"][grad] = gradient_error(study, case, args.np, grad)
@@ -1012,6 +1008,7 @@ def main():
     parser.add_argument("--pmshFoam", default=None)
     args = parser.parse_args()
     args.redo = set(filter(None, args.redo.split(",")))
+    args.gradients = True           # every mesh's gradient error (timeToAnswer.py: none)
     os.makedirs(args.work, exist_ok=True)
     os.makedirs(args.out, exist_ok=True)
 

@@ -95,7 +95,7 @@ def write_report(study, res, out):
              " with the tutorial's own schemes, is within %.1f %%. Meshing time is wall time"
              " from the geometry to a case ready for `simpleFoam -parallel` (snappyHexMesh:"
              " blockMesh + decomposePar + snappyHexMesh on %d ranks)." % (
-                 args_np(res), 100*TOLERANCE, args_np(res)), "",
+                 res.get("np", 2), 100*TOLERANCE, res.get("np", 2)), "",
              "## The answer per route", ""]
     rows = []
     for name, row in answers.items():
@@ -124,10 +124,6 @@ def write_report(study, res, out):
     with open(path, "w") as f:
         f.write("\n".join(lines))
     pb.log("Written: %s" % path)
-
-
-def args_np(res):
-    return res.get("np", 2)
 
 
 def main():

@@ -213,7 +213,7 @@ class TutorialCase:
     def check_mesh(self, np=1):
         """Run checkMesh; fail unless it says 'Mesh OK'. Returns the log."""
         _, text = self.run("checkMesh", np=np)
-        if not re.search(r"^Mesh OK", text, re.M):
+        if not read_check_mesh(text)["meshOK"]:
             problems = "\n".join(l for l in text.splitlines()
                                  if "***" in l or "FATAL" in l or "Failed" in l)
             raise AssertionError("checkMesh did not say 'Mesh OK' for %s:\n%s"
