@@ -56,7 +56,7 @@ bool pmsh::qualityPass::passMesh::improves
     std::vector<std::array<label, 4>> acrossOf, inSet;
     if (!addressSet(oldSet, old, acrossOf, inSet)) return false;
     std::vector<double> before = setBadness(oldSet, acrossOf, inSet, pos);
-    if (!addressSet(created, old, acrossOf, inSet)) return false;
+    if (!allPositive(created, pos) || !addressSet(created, old, acrossOf, inSet)) return false;
     createdBadness = setBadness(created, acrossOf, inSet, pos, rejectionBound(before));
     return !createdBadness.empty() && better(createdBadness, before);
 }
@@ -116,6 +116,39 @@ std::vector<pmsh::label> pmsh::qualityPass::passMesh::ringPoints
     std::sort(sorted.begin(), sorted.end());
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return {};
     return polygon;
+}
+
+
+bool pmsh::qualityPass::passMesh::ringTurnsCounterClockwise
+(
+    const std::vector<label>& ring,
+    const std::vector<label>& polygon,
+    label a,
+    label b
+) const
+{
+    // Read from the ring's largest tet: HXT's flat tets (volume 1e-19 on
+    // a sphere) may be oriented either way, which would turn every new
+    // tet inside out
+    label largest = ring[0];
+    double largestVolume = -1;
+    for (label u : ring)
+    {
+        const tetVerts& c = tets_[u];
+        const double v = tetVolume6(points_[c[0]], points_[c[1]], points_[c[2]], points_[c[3]]);
+        if (v > largestVolume)
+        {
+            largest = u;
+            largestVolume = v;
+        }
+    }
+    // Its two ring points in the polygon's order
+    const std::size_t n = polygon.size();
+    std::size_t i = 0;
+    while (!has(largest, polygon[i]) || !has(largest, polygon[(i + 1) % n])) ++i;
+    // (x_i, x_i+1, a, b) is negative when the ring turns counterclockwise
+    // seen from a (then (x, y, z, a) is positive for its triangles)
+    return !sameParity(tets_[largest], {polygon[i], polygon[(i + 1) % n], a, b});
 }
 
 
@@ -204,13 +237,18 @@ bool pmsh::qualityPass::passMesh::flip(label t)
         if (ring.size() > maxRing) continue;
         const std::vector<label> polygon = ringPoints(ring, a, b);
         if (polygon.empty()) continue;
+        // The triangles keep the polygon's turn about a-b: a triangle
+        // oriented by the sign of its own tet would also make a positive
+        // tet of a triangle outside a ring that is not convex, and the new
+        // tets would overlap
+        const bool counterClockwiseFromA = ringTurnsCounterClockwise(ring, polygon, a, b);
         for (const auto& triangles : triangulations(0, label(polygon.size()) - 1))
         {
             std::vector<tetVerts> created;
             for (const auto& t : triangles)
             {
                 const label x = polygon[t[0]], y = polygon[t[1]], z = polygon[t[2]];
-                if (tetVolume6(points_[x], points_[y], points_[z], points_[a]) > 0)
+                if (counterClockwiseFromA)
                 {
                     created.push_back({x, y, z, a});
                     created.push_back({x, z, y, b});
@@ -343,15 +381,13 @@ void pmsh::qualityPass::passMesh::smooth(label p)
     }
 
     point3 x = points_[p];
-    // The star's faces with p at y; none if one is worse than `bound`
-    const auto at = [&](const point3& y, const double bound)
+    // The star's faces with p at y; for a candidate y, none if one is
+    // worse than `bound` or if p at y inverts a tet
+    const auto at = [&](const point3& y, const double bound, const bool candidate)
     {
-        return setBadness
-        (
-            set, acrossOf, inSet,
-            [&](label q) -> const point3& { return q == p ? y : points_[q]; },
-            bound
-        );
+        const auto pos = [&](label q) -> const point3& { return q == p ? y : points_[q]; };
+        if (candidate && !allPositive(set, pos)) return std::vector<double>();
+        return setBadness(set, acrossOf, inSet, pos, bound);
     };
 
     point3 centre{0, 0, 0};
@@ -372,10 +408,10 @@ void pmsh::qualityPass::passMesh::smooth(label p)
     centre = (1.0/n)*centre;
     length /= n;
 
-    std::vector<double> current = at(x, infinite);
+    std::vector<double> current = at(x, infinite, false);
     bool moved = false;
     {
-        std::vector<double> b = at(centre, rejectionBound(current));
+        std::vector<double> b = at(centre, rejectionBound(current), true);
         if (!b.empty() && better(b, current))
         {
             x = centre;
@@ -429,7 +465,7 @@ void pmsh::qualityPass::passMesh::smooth(label p)
         for (double step : {0.1, 0.03, 0.01, 0.003})
         {
             const point3 y = x + step*dir;
-            std::vector<double> b = at(y, rejectionBound(current));
+            std::vector<double> b = at(y, rejectionBound(current), true);
             if (!b.empty() && better(b, current))
             {
                 x = y;

@@ -371,6 +371,41 @@ TEST(tetQualityPass, removesASliverWithAllItsPointsFixed)
 }
 
 
+TEST(tetQualityPass, edgeRemovalKeepsTheRingsTurnWhereTheRingIsNotConvex)
+{
+    // Six tets around edge a-b whose ring of points is not convex (the
+    // last point sits in towards the edge), every point fixed. A
+    // triangulation of the ring with a triangle outside it makes a
+    // positive tet of that triangle if each triangle is oriented by the
+    // sign of its own tet: the new tets then overlap, and a partition's
+    // mesh failed the volume contract ("overlapping tets") for it (a body
+    // with layers, hxt). Oriented by the ring's turn, that triangle's tets
+    // are inverted and the triangulation is refused. (One of the two
+    // failures among 20,000 random rings of 4-6 points with one point
+    // sitting in.)
+    TetMesh m;
+    m.points =
+    {
+        {0.023999824278483642, 0.039103107411750763, 0.61892283574059637},      // a
+        {-0.04446316776704503, -0.028854405141051212, -0.28906075054686431},    // b
+        {0.97855583267206403, -0.1133295121567717, 0.099237571709696965},
+        {0.39193020906876319, 0.89566285437437043, -0.044455476211786242},
+        {-0.51918049120323906, 1.2189624565469399, -0.051615375693474498},
+        {-1.3865375517444165, -0.003931394954943386, -0.021939155710737124},
+        {-0.56159350201107539, -0.90676747886431863, 0.038083923789667073},
+        {0.098122803612446977, -0.16882298485686259, 0.0072029108829158028}     // sits in
+    };
+    m.tets = {{0, 1, 3, 2}, {0, 1, 4, 3}, {0, 1, 5, 4}, {0, 1, 6, 5}, {0, 1, 7, 6}, {0, 1, 2, 7}};
+    const std::vector<triVerts> triangles = boundaryOf(m);
+    ASSERT_TRUE(matchTetFaces(m.points.size(), m.tets, triangles).fits());
+    const std::vector<point3> before = m.points;
+
+    improveWorstCells(m, label(before.size()), triangles, {}, 1);
+
+    expectValid(m, before, before.size(), triangles);
+}
+
+
 TEST(tetQualityPass, aFlatTetThatNoFlipMendsGetsAPointInTheFullPassToo)
 {
     // A tet flat to the last bit (HXT returns one now and then) on a unit
