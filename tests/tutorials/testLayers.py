@@ -1,12 +1,14 @@
 """Prism layers on walls, end to end: the pipe tutorial's pressure drop
 against Hagen-Poiseuille (its Allrun, layers on the wall), a body-in-box
 STL with layers on the body on 2 ranks (checkMesh Mesh OK, coverage in the
-log and summary.json), the same prisms at 1, 2 and 4 ranks, and the
+log and summary.json), OpenFOAM's bullet in a box with thick layers
+meshed by hxt without a fallback, the same prisms at 1, 2 and 4 ranks, and the
 errors a user meets (layers on a patch that is not a wall).
 
 Run one test:  python3 testLayers.py layers.test_pipeAllrunGivesPressureDropWithin2Percent
 """
 
+import gzip
 import os
 import re
 import sys
@@ -28,6 +30,47 @@ def set_patches(case, patches):
         text += "\npatches\n{\n%s}\n" % body
     with open(path, "w") as f:
         f.write(text)
+
+
+def write_bullet_in_box(path):
+    """OpenFOAM's bullet (tutorials/resources/geometry/bullet.stl.gz of
+    the OpenFOAM source the build uses), its triangles flipped to point out
+    of the fluid, in a box with 1.5 body lengths of padding and 3
+    downstream along its axis (z): solids inlet, outlet, sides, body."""
+    source = os.path.join(os.environ["WM_PROJECT_DIR"], "tutorials", "resources",
+                          "geometry", "bullet.stl.gz")
+    with gzip.open(source, "rt") as f:
+        v = [tuple(map(float, m)) for m in
+             re.findall(r"vertex\s+(\S+)\s+(\S+)\s+(\S+)", f.read())]
+    body = [(v[i], v[i + 2], v[i + 1]) for i in range(0, len(v), 3)]
+    lo = [min(p[k] for p in v) for k in range(3)]
+    hi = [max(p[k] for p in v) for k in range(3)]
+    length = max(hi[k] - lo[k] for k in range(3))
+    x0, y0, z0 = (lo[k] - 1.5 * length for k in range(3))
+    x1, y1 = (hi[k] + 1.5 * length for k in range(2))
+    z1 = hi[2] + 3 * length
+
+    def corner(i, j, k):
+        return ((x0, x1)[i], (y0, y1)[j], (z0, z1)[k])
+
+    def quad(a, b, c, d):       # outward by the right-hand rule
+        return [(corner(*a), corner(*b), corner(*c)), (corner(*a), corner(*c), corner(*d))]
+    solids = [
+        ("inlet", quad((0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0))),
+        ("outlet", quad((0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1))),
+        ("sides", quad((0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0))
+         + quad((1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1))
+         + quad((0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1))
+         + quad((0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0))),
+        ("body", body)]
+    with open(path, "w") as out:
+        for name, triangles in solids:
+            out.write("solid %s\n" % name)
+            for t in triangles:
+                out.write("  facet normal 0 0 0\n    outer loop\n")
+                out.write("".join("      vertex %.9g %.9g %.9g\n" % p for p in t))
+                out.write("    endloop\n  endfacet\n")
+            out.write("endsolid %s\n" % name)
 
 
 def prism_cells(case, np):
@@ -97,6 +140,32 @@ class layers(CaseTest):
         self.assertAlmostEqual(body["firstLayer"][2], 0.01, 9)
         self.assertGreater(s["prisms"], 0)
         self.assertEqual(cells_in_checkmesh_log(text), s["fineCells"])
+
+    def test_bulletWithThickLayersMeshesWithHxtAtTheFirstAttemptNp2(self):
+        """OpenFOAM's bullet.stl in a box (maxCellSize 0.02, r = 1), 5 layers
+        on the body, hxt, 2 ranks: the stacks are thick against the body's
+        fine surface (its grooves thin them), and HXT's mesh of a partition
+        failed the volume contract ("overlapping tets", from the quality
+        pass's edge removal) and fell back. Every partition is meshed by
+        hxt at its first attempt, Mesh OK."""
+        helper = bodyInBox(methodName="test_stlNp2")
+        helper.cases = self.cases
+        c = helper.body_case("sphereInBox.stl")
+        write_bullet_in_box(os.path.join(c.dir, "constant", "geometry", "bulletInBox.stl"))
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/bulletInBox.stl"')
+        c.set_entry("system/pmshDict", "maxCellSize", 0.02)
+        c.set_entry("system/pmshDict", "volumeMesher", "hxt")
+        set_patches(c, {"inlet": "type patch;", "outlet": "type patch;",
+                        "sides": "type patch;",
+                        "body": "type wall; maxCellSize 0.002; layers 5;"
+                                " firstLayerThickness 0.0001; expansionRatio 1.2;"})
+        _, log = c.run("pmshFoam", np=2)
+        self.assertNotIn("earlier attempts", log)
+        s = c.summary()
+        self.assertEqual(s["volumeMesherPerRank"], ["hxt", "hxt"])
+        self.assertEqual(s["volumeAttemptsPerRank"], [1, 1])
+        self.assertGreater(s["prisms"], 0)
+        c.check_mesh(np=2)
 
     def pipe_prisms(self, np):
         c = self.case("pipe", refinementLevels=1)
