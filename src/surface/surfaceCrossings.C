@@ -14,7 +14,7 @@ void pmsh::checkSurfaceCrossings
 {
     const std::vector<label> crossing = crossingTriangles
     (
-        points, surface.triangles, std::vector<bool>(surface.triangles.size(), true)
+        points, surface.triangles, std::vector<bool>(surface.triangles.size(), true), true
     );
     label first = -1;
     label nCrossing = 0;

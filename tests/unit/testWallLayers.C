@@ -451,6 +451,42 @@ TEST(triangleCrossings, findsASegmentThroughATriangleAndNotBesideOrAtItsEnds)
 }
 
 
+TEST(triangleCrossings, aSurfaceFoldedOntoItselfCrossesBeforeStage4)
+{
+    // What no edge passing through a triangle shows: pairs in one plane
+    // that overlap there, with no point shared, with an edge shared (a
+    // triangle folded back over its neighbour) and with a point shared;
+    // and a pair sharing a point whose far edge passes through the other.
+    // Seen with alsoFolds (the check before stage 4) only
+    const auto crossings = [](const std::vector<point3>& x, const std::vector<triVerts>& t)
+    {
+        const std::vector<bool> all(t.size(), true);
+        const std::vector<label> with = crossingTriangles(x, t, all, true);
+        const std::vector<label> without = crossingTriangles(x, t, all);
+        EXPECT_EQ(std::count(without.begin(), without.end(), 0), label(t.size()));
+        return label(t.size()) - label(std::count(with.begin(), with.end(), 0));
+    };
+    const point3 p{0, 0, 0}, q{1, 0, 0}, r{0.5, 1, 0};
+
+    // Apart in one plane; overlapping there
+    EXPECT_EQ(crossings({p, q, r, {2, 0, 0}, {3, 0, 0}, {2.5, 1, 0}}, {{0, 1, 2}, {3, 4, 5}}), 0);
+    EXPECT_EQ(crossings({p, q, r, {0.2, 0.2, 0}, {1.2, 0.2, 0}, {0.7, 1.2, 0}}, {{0, 1, 2}, {3, 4, 5}}), 2);
+
+    // Sharing edge p-q: flat across it (a fair surface); folded back over
+    EXPECT_EQ(crossings({p, q, r, {0.5, -1, 0}}, {{0, 1, 2}, {1, 0, 3}}), 0);
+    EXPECT_EQ(crossings({p, q, r, {0.5, 0.6, 0}}, {{0, 1, 2}, {1, 0, 3}}), 2);
+
+    // Sharing point p: side by side in one plane; one over the other
+    EXPECT_EQ(crossings({p, q, r, {-1, 0.5, 0}, {-1, -0.5, 0}}, {{0, 1, 2}, {0, 3, 4}}), 0);
+    EXPECT_EQ(crossings({p, q, r, {0.8, 0.3, 0}, {0.3, 0.5, 0}}, {{0, 1, 2}, {0, 3, 4}}), 2);
+
+    // Sharing point p, out of plane: the far edge of the second passes
+    // through the first; and it stays above it
+    EXPECT_EQ(crossings({p, q, r, {0.4, 0.3, -1}, {0.4, 0.3, 1}}, {{0, 1, 2}, {0, 3, 4}}), 2);
+    EXPECT_EQ(crossings({p, q, r, {0.4, 0.3, 0.5}, {0.4, 0.3, 1}}, {{0, 1, 2}, {0, 3, 4}}), 0);
+}
+
+
 TEST(wallLayers, foldsBelowTheFeatureAngleAreThinnedUntilPrismsAreValid)
 {
     // A valley bent by 50 degrees (below featureAngle 60), its triangles
