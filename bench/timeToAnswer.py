@@ -2,11 +2,12 @@
 """Time to a right answer: how long each mesher takes to the smallest mesh whose drag is right.
 
 bench/run --answer (bench/README.md, "Time to a right answer") meshes the
-sphere of tutorials/sphereDrag (Re = 100) along three routes, each from
+sphere of tutorials/sphereDrag (Re = 100) along five routes, each from
 coarse to fine:
 
 - pmshFoam with volumeMesher hxt (mpirun -np 2 pmshFoam -parallel),
 - pmshFoam with volumeMesher netgen (the same),
+- both again with the tutorial's 3 prism layers on the ball,
 - snappyHexMesh: blockMesh, decomposePar and snappyHexMesh on 2 ranks
   (bench/cases/sphereDragSnappy at refinement levels 3, 4, 5);
 
@@ -34,6 +35,9 @@ TOLERANCE = 0.015
 SHIPPED_SCHEMES = "leastSquaresLimitedConvection"
 PMSH_FACTORS = (2.0, 1.41, 1.0, 0.71, 0.5)
 SNAPPY_LEVELS = (3, 4, 5)
+# tutorials/sphereDrag's prism layers on the ball
+TUTORIAL_LAYERS = "layers 3; firstLayerThickness 0.004; expansionRatio 1.2; "
+TUTORIAL_LAYERS_NAME = "3 layers"
 
 
 def routes(study):
@@ -42,6 +46,12 @@ def routes(study):
     for mesher in ("hxt", "netgen"):
         out.append(("pmshFoam %s" % mesher,
                     [study.pmsh_mesh("%s-%g" % (mesher, f), "pmshFoam %s" % mesher, mesher, f)
+                     for f in PMSH_FACTORS]))
+    for mesher in ("hxt", "netgen"):
+        family = "pmshFoam %s, %s" % (mesher, TUTORIAL_LAYERS_NAME)
+        out.append((family,
+                    [study.pmsh_mesh("%s-%g-layers3" % (mesher, f), family, mesher, f,
+                                     layers=TUTORIAL_LAYERS)
                      for f in PMSH_FACTORS]))
     out.append(("snappyHexMesh", [
         {"name": "snappy-L%d" % level, "family": "snappyHexMesh", "builder": "snappy",
