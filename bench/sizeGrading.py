@@ -4,7 +4,8 @@ edge length in bands of distance from the wall, for Netgen and HXT on the
 same dictionary, side by side (HXT's sizes must follow the size
 field Netgen's follow, within 15 % in every band).
 
-- sphereDrag as shipped (distance from the ball of radius 0.5);
+- sphereDrag as shipped (distance from the ball of radius 0.5; its 3
+  prism layers fill the first 0.015, both meshers alike);
 - the pipe as shipped, 12 prism layers on its wall (distance from the
   wall of radius 0.5: the layers fill the first 0.29, both meshers alike).
 
