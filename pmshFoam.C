@@ -241,10 +241,6 @@ static void meshCase
     const std::vector<std::array<pmsh::label, 2>> zonePairs = pmsh::zonePairsOf(coarse);
     pmsh::logCoarseMesh(coarse);
     pmsh::logLocalSizes(coarse, settings);
-    pmsh::fineMeshForecast forecast = pmsh::forecastFineMesh
-    (
-        comm, coarse, settings, !pmsh::foam::found(args, "noMemoryCheck")
-    );
     std::map<pmsh::label, pmsh::layerSpecification> layerSpecs;
     pmsh::failTogether(comm, [&]
     {
@@ -252,6 +248,10 @@ static void meshCase
         pmsh::checkPatchCoverage(fieldTemplates, coarse.patches);
         layerSpecs = pmsh::layerSpecsOf(settings, coarse);
     });
+    pmsh::fineMeshForecast forecast = pmsh::forecastFineMesh
+    (
+        comm, coarse, settings, layerSpecs, !pmsh::foam::found(args, "noMemoryCheck")
+    );
     stages.end();
 
     stages.begin("partition", "Stage 2: partition into " + std::to_string(comm.size()) + " parts");

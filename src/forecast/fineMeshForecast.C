@@ -9,6 +9,7 @@ pmsh::fineMeshForecast pmsh::forecastFineMesh
     const Communicator& comm,
     const CoarseMesh& coarse,
     const meshSettings& settings,
+    const std::map<label, layerSpecification>& layerSpecs,
     bool checkMemory
 )
 {
@@ -40,7 +41,8 @@ pmsh::fineMeshForecast pmsh::forecastFineMesh
         estimate = estimateAndCheckMemory
         (
             comm, settings, coarse.nCells(),
-            weightSum*std::pow(8.0, settings.refinementLevels), checkMemory
+            weightSum*std::pow(8.0, settings.refinementLevels),
+            expectedPrisms(coarse, layerSpecs, settings.refinementLevels), checkMemory
         );
         const double termSum =
             weightTerms.volumeGraded + weightTerms.regionsGraded
@@ -53,6 +55,23 @@ pmsh::fineMeshForecast pmsh::forecastFineMesh
         }
     });
     return forecast;
+}
+
+
+double pmsh::expectedPrisms
+(
+    const CoarseMesh& coarse,
+    const std::map<label, layerSpecification>& layerSpecs,
+    const int refinementLevels
+)
+{
+    double prisms = 0;
+    for (const coarseBoundaryFace& f : coarse.boundary)
+    {
+        const auto spec = layerSpecs.find(f.patch);
+        if (spec != layerSpecs.end()) prisms += spec->second.nLayers;
+    }
+    return prisms*std::pow(4.0, refinementLevels);
 }
 
 

@@ -172,14 +172,16 @@ pmsh::memoryEstimate pmsh::estimateMemory
     const std::string& volumeMesher,
     const std::string& coarseMesher,
     int nRanks,
-    double baseBytes
+    double baseBytes,
+    double prisms
 )
 {
     const mesherFigures& f = figuresOf(volumeMesher, coarseMesher);
     nRanks = std::max(nRanks, 1);
     memoryEstimate e;
     e.cellsPerWeighted = f.cellsPerWeighted;
-    e.fineCells = f.cellsPerWeighted*weightedFineCells;
+    e.prisms = prisms;
+    e.fineCells = f.cellsPerWeighted*weightedFineCells + prisms;
     e.fineCellsPerRank = std::min(e.fineCells, largestRankShare*e.fineCells/nRanks);
     e.bytesPerRank = baseBytes + f.bytesPerCell*e.fineCellsPerRank;
     e.leastBytesPerRank =
@@ -412,6 +414,7 @@ pmsh::memoryEstimate pmsh::estimateAndCheckMemory
     const meshSettings& settings,
     std::int64_t coarseCells,
     double weightedFineCells,
+    double prisms,
     bool check
 )
 {
@@ -420,13 +423,19 @@ pmsh::memoryEstimate pmsh::estimateAndCheckMemory
     const memoryEstimate e = estimateMemory
     (
         weightedFineCells, settings.volumeMesher, settings.coarseMesher,
-        comm.size(), baseBytes
+        comm.size(), baseBytes, prisms
     );
     const double machineBytes = double(machineMemoryBytes());
 
     Info
         << "    expected fine cells: " << count(e.fineCells).c_str() << " (largest rank "
-        << count(e.fineCellsPerRank).c_str() << "), peak memory per rank: "
+        << count(e.fineCellsPerRank).c_str();
+    if (e.prisms > 0)
+    {
+        Info << "; prisms of the layers " << count(e.prisms).c_str();
+    }
+    Info
+        << "), peak memory per rank: "
         << memorySizeName(e.bytesPerRank).c_str() << ", "
         << memorySizeName(ranksOnMachine*e.bytesPerRank).c_str() << " for the "
         << plural(ranksOnMachine, "rank").c_str() << " on the master's machine of "

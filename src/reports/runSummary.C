@@ -246,6 +246,7 @@ void writeSummaryJson
         << "  \"messagesPerRank\": " << jsonArray(f.messagesPerRank) << ",\n"
         << "  \"bytesSentPerRank\": " << jsonArray(f.bytesSentPerRank) << ",\n"
         << "  \"estimatedFineCells\": " << estimate.fineCells << ",\n"
+        << "  \"estimatedPrisms\": " << estimate.prisms << ",\n"
         << "  \"estimatedCellsPerWeighted\": " << estimate.cellsPerWeighted << ",\n"
         << "  \"estimatedFineCellsLargestRank\": " << estimate.fineCellsPerRank << ",\n"
         << "  \"estimateShares\": {\"volume\": " << estimate.volumeShare

@@ -121,7 +121,8 @@ class layers(CaseTest):
     def test_bodyInBoxStlWithLayersOnTheBodyNp2(self):
         """sphereInBox.stl, 3 layers on the body, 2 ranks: checkMesh Mesh
         OK with prisms, every body face layered (coverage 1 in
-        summary.json and 100 % in the log), first layer as asked."""
+        summary.json and 100 % in the log), first layer as asked, and the
+        estimate after stage 1 with the prisms in it."""
         helper = bodyInBox(methodName="test_stlNp2")
         helper.cases = self.cases       # its case is kept or removed as ours
         c = helper.body_case("sphereInBox.stl")
@@ -140,6 +141,13 @@ class layers(CaseTest):
         self.assertAlmostEqual(body["firstLayer"][2], 0.01, 9)
         self.assertGreater(s["prisms"], 0)
         self.assertEqual(cells_in_checkmesh_log(text), s["fineCells"])
+        # The estimate after stage 1 counts the prisms: every body face
+        # layered, it expects them exactly, and the cells within its band
+        # (without them it was 0.3 of the cells on the 12-layer pipe)
+        self.assertEqual(s["estimatedPrisms"], s["prisms"])
+        ratio = s["estimatedFineCells"] / s["fineCells"]
+        self.assertGreaterEqual(ratio, 0.67)
+        self.assertLessEqual(ratio, 1.5)
 
     def test_bulletWithThickLayersMeshesWithHxtAtTheFirstAttemptNp2(self):
         """OpenFOAM's bullet.stl in a box (maxCellSize 0.02, r = 1), 5 layers

@@ -304,16 +304,16 @@ TEST(memoryEstimate, theSerialRunIsOneRankOnItsMachineAndNoMemoryCheckGoesOn)
     // The sphere tutorial at 10 levels cannot fit on any machine today
     const std::string m = errorOf
     (
-        [&] { estimateAndCheckMemory(serial, sphereSettings(10), 917, sphereWeighted(10), true); }
+        [&] { estimateAndCheckMemory(serial, sphereSettings(10), 917, sphereWeighted(10), 0, true); }
     );
     EXPECT_NE(m.find("'refinementLevels'"), std::string::npos) << m;
-    EXPECT_NO_THROW(estimateAndCheckMemory(serial, sphereSettings(1), 917, sphereWeighted(1), true));
+    EXPECT_NO_THROW(estimateAndCheckMemory(serial, sphereSettings(1), 917, sphereWeighted(1), 0, true));
 
     // -noMemoryCheck goes on; labels are a limit of the build, no option
     // skips them: 10 levels (some 10^12 cells) pass 32-bit labels
     auto noMemoryCheck = [&]
     {
-        estimateAndCheckMemory(serial, sphereSettings(10), 917, sphereWeighted(10), false);
+        estimateAndCheckMemory(serial, sphereSettings(10), 917, sphereWeighted(10), 0, false);
     };
     if (labelBits == 64)
     {
@@ -353,7 +353,7 @@ TEST(labelEstimate, threeBillionCellsStopAtTheLabelsWith32BitsAndAtTheMemoryWith
     const meshSettings s = sphereSettings(7);
     const std::string m = errorOf
     (
-        [&] { estimateAndCheckMemory(Communicator(), s, 917, weighted, false); }
+        [&] { estimateAndCheckMemory(Communicator(), s, 917, weighted, 0, false); }
     );
     if (labelBits == 32)
     {
