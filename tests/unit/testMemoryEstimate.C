@@ -4,12 +4,14 @@
 \*---------------------------------------------------------------------------*/
 
 #include "memoryEstimate.H"
+#include "fineMeshForecast.H"
 #include "stageClock.H"
 #include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <string>
 
 using namespace pmsh;
@@ -103,6 +105,31 @@ TEST(memoryEstimate, theLargestRankHoldsAtLeastAnEvenShare)
     EXPECT_GE(four.fineCellsPerRank, four.fineCells/4);
     EXPECT_LT(four.fineCellsPerRank, four.fineCells/2);
     EXPECT_GE(four.leastBytesPerRank, base);
+}
+
+
+TEST(memoryEstimate, countsThePrismsOfEachLayeredFaceAtTheFineLevel)
+{
+    // Three coarse faces on patch 0 (5 layers), two on patch 1 (none), one
+    // on patch 2 (2 layers): at r = 2 each is 16 fine triangles
+    CoarseMesh coarse;
+    for (label patch : {0, 0, 0, 1, 1, 2})
+    {
+        coarse.boundary.push_back({{0, 1, 2}, patch, 0});
+    }
+    std::map<label, layerSpecification> specs;
+    specs[0].nLayers = 5;
+    specs[2].nLayers = 2;
+    EXPECT_DOUBLE_EQ(expectedPrisms(coarse, specs, 2), (3*5 + 2)*16.0);
+    EXPECT_DOUBLE_EQ(expectedPrisms(coarse, {}, 2), 0);
+
+    // Prisms add to the cells and the memory, once, on any number of ranks
+    const memoryEstimate tets = estimateMemory(1e6, "hxt", "netgen", 4, base);
+    const memoryEstimate layered = estimateMemory(1e6, "hxt", "netgen", 4, base, 2e5);
+    EXPECT_DOUBLE_EQ(layered.fineCells, tets.fineCells + 2e5);
+    EXPECT_DOUBLE_EQ(layered.prisms, 2e5);
+    EXPECT_GT(layered.fineCellsPerRank, tets.fineCellsPerRank);
+    EXPECT_GT(layered.bytesPerRank, tets.bytesPerRank);
 }
 
 
