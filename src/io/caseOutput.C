@@ -62,6 +62,7 @@ pmsh::caseOutput::caseOutput
     {
         std::error_code ec;
         fs::remove_all(scratchDir_, ec);
+        linkCaseData();
     }
     comm.barrier();
 
@@ -74,6 +75,34 @@ pmsh::caseOutput::caseOutput
     (
         foam::newTime(runTime.controlDict(), runTime.rootPath(), caseName)
     );
+}
+
+
+void pmsh::caseOutput::linkCaseData() const
+{
+    // Boundary conditions read case data relative to the processor case
+    // the fields are built in: timeVaryingMappedFixedValue reads
+    // processorN/../constant/boundaryData/<patch>, which must be the real
+    // case's. Everything in constant/ but the mesh is linked (relative
+    // links: the case may move); remove_all takes the links, not their
+    // targets
+    const fs::path constant = fs::path(caseDir_)/"constant";
+    std::error_code ec;
+    if (!fs::is_directory(constant, ec))
+    {
+        return;
+    }
+    const fs::path scratchConstant = fs::path(scratchDir_)/"constant";
+    fs::create_directories(scratchConstant);
+    for (const fs::directory_entry& e : fs::directory_iterator(constant))
+    {
+        const std::string name = e.path().filename().string();
+        if (name == "polyMesh")
+        {
+            continue;
+        }
+        fs::create_symlink(fs::path("../../constant")/name, scratchConstant/name);
+    }
 }
 
 

@@ -240,6 +240,42 @@ class parallelRun(ParallelCaseTest):
         self.assertRegex(text, r"(?m)^End")
         self.assertTrue(c.exists("processors2/5/U"), "the solver's fields at endTime")
 
+    def test_anInletProfileFromBoundaryDataIsWrittenAndSolvedWithoutDecomposePar(self):
+        """0/U's inlet as a mapped profile (timeVaryingMappedFixedValue,
+        the profile in constant/boundaryData/inlet), standard OpenFOAM
+        practice: stage 7 built the fields in a scratch processor case
+        where processorN/../constant/boundaryData did not exist, and
+        stopped. Serial and on 2 ranks the field is written with the
+        condition, and simpleFoam runs on it."""
+        for np in (1, 2):
+            c = self.case("shaft", refinementLevels=1)
+            data = os.path.join(c.dir, "constant", "boundaryData", "inlet")
+            os.makedirs(os.path.join(data, "0"))
+            grid = [(0.0, -0.6 + 0.3*i, -0.6 + 0.3*j) for i in range(5) for j in range(5)]
+            with open(os.path.join(data, "points"), "w") as f:
+                f.write("%d\n(\n%s)\n" % (len(grid), "".join("(%g %g %g)\n" % p for p in grid)))
+            with open(os.path.join(data, "0", "U"), "w") as f:
+                f.write("%d\n(\n%s)\n" % (len(grid), "(1 0 0)\n"*len(grid)))
+            path = os.path.join(c.dir, "0", "U")
+            with open(path) as f:
+                text = f.read()
+            text, n = re.subn(r"(?s)(inlet\s*\{).*?\}",
+                              r"\1\n        type timeVaryingMappedFixedValue;"
+                              r"\n        offset (0 0 0);\n        setAverage off;\n    }", text)
+            self.assertEqual(n, 1)
+            with open(path, "w") as f:
+                f.write(text)
+            c.run("pmshFoam", np=np)
+            written = [os.path.join(c.dir, d, "0", "U") for d in
+                       (["processor0", "processor1"] if np > 1 else [""])]
+            texts = []
+            for w in written:
+                with open(w) as f:
+                    texts.append(f.read())
+            self.assertTrue(any("timeVaryingMappedFixedValue" in t for t in texts), written)
+            _, log = c.run("simpleFoam", np=np)
+            self.assertRegex(log, r"(?m)^End")
+
     def test_procAddressingDescribesAValidGlobalMesh(self):
         """Assemble constant/polyMesh from the processor meshes through
         their procAddressing alone; checkMesh must accept it, and
