@@ -22,11 +22,14 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "tools"))
-from foamCase import ROOT, TutorialCase, summary  # noqa: E402
+from foamCase import ROOT, TutorialCase, summary, write_bullet_in_box  # noqa: E402
 
 GEOMETRY = os.path.join(ROOT, "tests", "data", "geometry")
 
 SPHERE_BODY = {"body": "maxCellSize 0.1"}
+BULLET = "bulletInBox.stl"
+BULLET_BODY = {"body": "maxCellSize 0.002"}
+BULLET_LAYERS = {"body": "maxCellSize 0.002; layers 5; firstLayerThickness 0.0001; expansionRatio 1.2"}
 WAKE = "wake { type box; min (-1 -1 -1); max (4 1 1); maxCellSize 0.3; }"
 
 # (name, tutorial, geometry file from tests/data or None, ranks, entries,
@@ -64,13 +67,28 @@ CASES = [
     ("sphereInBox.stl hxt r2 P2, wake", "sphereSTL", "sphereInBox.stl", 2,
      {"maxCellSize": 1, "refinementLevels": 2, "volumeMesher": "hxt"}, {}, WAKE),
     ("shaft hxt r3 P2", "shaft", None, 2, {"refinementLevels": 3, "volumeMesher": "hxt"}, {}, None),
+    ("pipe netgen r1 P2 (12 layers)", "pipe", None, 2, {"volumeMesher": "netgen"}, {}, None),
+    ("pipe hxt r1 P2 (12 layers)", "pipe", None, 2, {"volumeMesher": "hxt"}, {}, None),
+    # OpenFOAM's bullet in a box (write_bullet_in_box), at two sizes, with
+    # and without 5 layers on the body
+    ("bullet hxt 0.02 r1 P2", "sphereSTL", BULLET, 2,
+     {"maxCellSize": 0.02, "refinementLevels": 1, "volumeMesher": "hxt"}, BULLET_BODY, None),
+    ("bullet hxt 0.02 r1 P2 (5 layers)", "sphereSTL", BULLET, 2,
+     {"maxCellSize": 0.02, "refinementLevels": 1, "volumeMesher": "hxt"}, BULLET_LAYERS, None),
+    ("bullet hxt 0.01 r1 P2", "sphereSTL", BULLET, 2,
+     {"maxCellSize": 0.01, "refinementLevels": 1, "volumeMesher": "hxt"}, {}, None),
+    ("bullet netgen 0.02 r1 P2 (5 layers)", "sphereSTL", BULLET, 2,
+     {"maxCellSize": 0.02, "refinementLevels": 1, "volumeMesher": "netgen"}, BULLET_LAYERS, None),
 ]
 
 
 def make_case(tutorial, geometry, entries, patch_sizes, regions):
     c = TutorialCase(tutorial)
-    if geometry:
+    if geometry == BULLET:
+        write_bullet_in_box(os.path.join(c.dir, "constant", "geometry", geometry))
+    elif geometry:
         shutil.copy(os.path.join(GEOMETRY, geometry), os.path.join(c.dir, "constant", "geometry", geometry))
+    if geometry:
         c.set_entry("system/pmshDict", "geometry", '"constant/geometry/%s"' % geometry)
         # The solids of the test geometries: no field templates for them
         shutil.rmtree(os.path.join(c.dir, "0"), ignore_errors=True)

@@ -8,14 +8,13 @@ errors a user meets (layers on a patch that is not a wall).
 Run one test:  python3 testLayers.py layers.test_pipeAllrunGivesPressureDropWithin2Percent
 """
 
-import gzip
 import os
 import re
 import sys
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from foamCase import CaseTest, cells_in_checkmesh_log  # noqa: E402
+from foamCase import CaseTest, cells_in_checkmesh_log, write_bullet_in_box  # noqa: E402
 from testBodyInBox import bodyInBox  # noqa: E402
 
 
@@ -30,47 +29,6 @@ def set_patches(case, patches):
         text += "\npatches\n{\n%s}\n" % body
     with open(path, "w") as f:
         f.write(text)
-
-
-def write_bullet_in_box(path):
-    """OpenFOAM's bullet (tutorials/resources/geometry/bullet.stl.gz of
-    the OpenFOAM source the build uses), its triangles flipped to point out
-    of the fluid, in a box with 1.5 body lengths of padding and 3
-    downstream along its axis (z): solids inlet, outlet, sides, body."""
-    source = os.path.join(os.environ["WM_PROJECT_DIR"], "tutorials", "resources",
-                          "geometry", "bullet.stl.gz")
-    with gzip.open(source, "rt") as f:
-        v = [tuple(map(float, m)) for m in
-             re.findall(r"vertex\s+(\S+)\s+(\S+)\s+(\S+)", f.read())]
-    body = [(v[i], v[i + 2], v[i + 1]) for i in range(0, len(v), 3)]
-    lo = [min(p[k] for p in v) for k in range(3)]
-    hi = [max(p[k] for p in v) for k in range(3)]
-    length = max(hi[k] - lo[k] for k in range(3))
-    x0, y0, z0 = (lo[k] - 1.5 * length for k in range(3))
-    x1, y1 = (hi[k] + 1.5 * length for k in range(2))
-    z1 = hi[2] + 3 * length
-
-    def corner(i, j, k):
-        return ((x0, x1)[i], (y0, y1)[j], (z0, z1)[k])
-
-    def quad(a, b, c, d):       # outward by the right-hand rule
-        return [(corner(*a), corner(*b), corner(*c)), (corner(*a), corner(*c), corner(*d))]
-    solids = [
-        ("inlet", quad((0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0))),
-        ("outlet", quad((0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1))),
-        ("sides", quad((0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0))
-         + quad((1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1))
-         + quad((0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1))
-         + quad((0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0))),
-        ("body", body)]
-    with open(path, "w") as out:
-        for name, triangles in solids:
-            out.write("solid %s\n" % name)
-            for t in triangles:
-                out.write("  facet normal 0 0 0\n    outer loop\n")
-                out.write("".join("      vertex %.9g %.9g %.9g\n" % p for p in t))
-                out.write("    endloop\n  endfacet\n")
-            out.write("endsolid %s\n" % name)
 
 
 def prism_cells(case, np):
