@@ -29,7 +29,7 @@ bool trianglesCross(const std::vector<point3>& x, const triVerts& a, const triVe
 }
 
 
-//- Points two triangles share, in a's order
+//- How many points two triangles share
 int nShared(const triVerts& a, const triVerts& b)
 {
     int n = 0;
