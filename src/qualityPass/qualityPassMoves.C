@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * //
 
@@ -247,17 +248,11 @@ bool pmsh::qualityPass::passMesh::flip(label t)
             std::vector<tetVerts> created;
             for (const auto& t : triangles)
             {
-                const label x = polygon[t[0]], y = polygon[t[1]], z = polygon[t[2]];
-                if (counterClockwiseFromA)
-                {
-                    created.push_back({x, y, z, a});
-                    created.push_back({x, z, y, b});
-                }
-                else
-                {
-                    created.push_back({x, z, y, a});
-                    created.push_back({x, y, z, b});
-                }
+                const label x = polygon[t[0]];
+                label y = polygon[t[1]], z = polygon[t[2]];
+                if (!counterClockwiseFromA) std::swap(y, z);
+                created.push_back({x, y, z, a});
+                created.push_back({x, z, y, b});
             }
             consider(ring, created);
         }
