@@ -221,6 +221,17 @@ class TutorialCase:
     def write_format(self, fmt):
         self.set_entry("system/controlDict", "writeFormat", fmt)
 
+    def substitute(self, relative, pattern, replacement, count=1):
+        """re.sub in a file of the case; the pattern must match `count`
+        times (a tutorial whose text moved on fails here, not silently)."""
+        path = os.path.join(self.dir, relative)
+        with open(path) as f:
+            text, n = re.subn(pattern, replacement, f.read())
+        if n != count:
+            raise AssertionError("%r matched %d times in %s, not %d" % (pattern, n, path, count))
+        with open(path, "w") as f:
+            f.write(text)
+
     # -- running ----------------------------------------------------------
 
     def run(self, *command, np=1, log=None, check=True, env=None, timeout=1800):

@@ -39,17 +39,6 @@ class sphereDrag(CaseTest):
         self.assertLess(iterations, 1000, "stopped at endTime, not when Cd settled")
         return last
 
-    def ball_without_layers(self, case):
-        """The tutorial's ball entry without its prism layers"""
-        path = os.path.join(case.dir, "system", "pmshDict")
-        with open(path) as f:
-            text = f.read()
-        text, n = re.subn(r"\n\s*layers\s+3;\n\s*firstLayerThickness\s+0\.004;"
-                          r"\n\s*expansionRatio\s+1\.2;", "", text)
-        self.assertEqual(n, 1, "the ball's layer entries in " + path)
-        with open(path, "w") as f:
-            f.write(text)
-
     def test_allrunGivesCdWithin1PercentOfTheReference(self):
         """The Allrun meshes the box with its named patches and the ball's
         prism layers on 2 ranks (Mesh OK), simpleFoam converges on it (the
@@ -88,13 +77,8 @@ class sphereDrag(CaseTest):
         """The fast route at fewer cells: the ball's size 0.12 and the
         wake's 1.2 (143k cells with the layers): Cd within 2 % (+1.6 %)."""
         c = self.case("sphereDrag")
-        path = os.path.join(c.dir, "system", "pmshDict")
-        with open(path) as f:
-            text = f.read()
-        text = text.replace("maxCellSize         0.1;", "maxCellSize         0.12;")
-        text = text.replace("maxCellSize 1; }", "maxCellSize 1.2; }")
-        with open(path, "w") as f:
-            f.write(text)
+        c.substitute("system/pmshDict", r"maxCellSize         0\.1;", "maxCellSize         0.12;")
+        c.substitute("system/pmshDict", r"maxCellSize 1; \}", "maxCellSize 1.2; }")
         c.run("pmshFoam", np=2)
         self.assertLessEqual(c.summary()["fineCells"], 160000)
         last = self.settled_cd(c)
@@ -115,7 +99,8 @@ class sphereDrag(CaseTest):
         sizes jumped away from the ball and left interior points a tenth of
         a cell above the wall (bench/results/hxt-divergence.md)."""
         c = self.case("sphereDrag")
-        self.ball_without_layers(c)
+        c.substitute("system/pmshDict", r"\n\s*layers\s+3;\n\s*firstLayerThickness\s+0\.004;"
+                     r"\n\s*expansionRatio\s+1\.2;", "")
         c.run("pmshFoam", np=2)
         self.assertEqual(c.summary()["prisms"], 0)
         last = self.settled_cd(c)
