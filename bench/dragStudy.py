@@ -186,10 +186,10 @@ PIPE_PMSH_DICT = pmsh_dict("pipe.geo", """\
     walls            { type wall; %(layers)s}
 """)
 
-# pmshFoam's prism layers: 5 on the ball (0.015 thick); on the
-# pipe's wall the 5 of snappyHexMesh's case and the tutorial's 12 (0.29
-# of the radius)
-SPHERE_LAYERS = "layers 5; firstLayerThickness 0.002; expansionRatio 1.2; "
+# pmshFoam's prism layers: the sphereDrag tutorial's 3 on the ball (0.0146
+# thick); on the pipe's wall the 5 of snappyHexMesh's case and the
+# tutorial's 12 (0.29 of the radius)
+SPHERE_LAYERS = "layers 3; firstLayerThickness 0.004; expansionRatio 1.2; "
 PIPE_LAYERS_5 = "layers 5; firstLayerThickness 0.01; expansionRatio 1.2; "
 PIPE_LAYERS_12 = "layers 12; firstLayerThickness 0.01; expansionRatio 1.15; "
 
@@ -197,6 +197,8 @@ PIPE_LAYERS_12 = "layers 12; firstLayerThickness 0.01; expansionRatio 1.15; "
 class Study:
     """One flow of the study: its tutorial, its peer's case, its meshes and
     how a solution's answer is read"""
+
+    layered_sizes = None            # of the matrix, with layers too (None: all)
 
     # Scheme sets solved on every mesh, and variants on the reference mesh
     scheme_sets = tuple(SCHEMES)
@@ -216,27 +218,43 @@ class Study:
         return {"name": name, "family": family, "builder": "pmsh", "mesher": mesher,
                 "factor": factor, "sizes": full, "regions": regions, "layers": layers}
 
+    def mesher_matrix(self):
+        """pmshFoam's meshes of the tutorial's dictionary: both meshers at
+        each of matrix_sizes, with and without the tutorial's layers, the
+        smallest first, then the finest meshes"""
+        out = []
+        for size in self.matrix_sizes:
+            for layered in (False, True):
+                if layered and size not in (self.layered_sizes or self.matrix_sizes):
+                    continue
+                for mesher in ("netgen", "hxt"):
+                    out.append(self.sized(mesher, size, layered))
+        return out + [self.sized(*m) for m in self.finest]
+
 
 class SphereStudy(Study):
     sizes = {"far": 4.0, "ball": 0.1, "wake": 1.0}      # the tutorial's
     reference_mesh = "netgen-1"
     scheme_sets = ("gauss", "leastSquares", "leastSquaresLimitedConvection")
+    shipped = "leastSquaresLimitedConvection"       # tutorials/sphereDrag's fvSchemes
 
     def __init__(self):
         Study.__init__(self, "sphere", os.path.join(ROOT, "tutorials", "sphereDrag"),
                        os.path.join(BENCH_DIR, "cases", "sphereDragSnappy"),
                        SPHERE_PMSH_DICT, REFERENCE_CD, "Cd")
 
+    # The mesher matrix (--shipped): size factors (cells ~ factor^-3, less
+    # where the ball's size rules), and the finest meshes beyond it
+    matrix_sizes = (2.0, 1.41, 1.0, 0.71)
+    finest = (("hxt", 0.5, True), ("hxt", 0.5, False), ("netgen", 0.5, False))
+
+    def sized(self, mesher, f, layered):
+        return self.pmsh_mesh("%s-%g%s" % (mesher, f, "-layers" if layered else ""),
+                              "pmshFoam %s%s" % (mesher, ", 3 layers" if layered else ""),
+                              mesher, f, layers=SPHERE_LAYERS if layered else "")
+
     def meshes(self):
-        out = []
-        # Size factors (cells ~ factor^-3, less where the ball's size rules)
-        for f in (2.0, 1.41, 1.0, 0.71, 0.5):
-            out.append(self.pmsh_mesh("netgen-%g" % f, "pmshFoam netgen", "netgen", f))
-        for f in (2.0, 1.41, 1.0, 0.71):
-            out.append(self.pmsh_mesh("hxt-%g" % f, "pmshFoam hxt", "hxt", f))
-        for f in (1.41, 1.0):
-            out.append(self.pmsh_mesh("netgen-%g-layers" % f, "pmshFoam netgen, 5 layers",
-                                      "netgen", f, layers=SPHERE_LAYERS))
+        out = self.mesher_matrix()
         for f in (1.41, 1.0, 0.71, 0.5):
             m = self.pmsh_mesh("dual-%g" % f, "polyDualMesh of pmshFoam netgen", "netgen", f)
             m["builder"] = "dual"
@@ -297,21 +315,26 @@ class PipeStudy(Study):
     variants = ("gaussUnlimited", "leastSquares", "leastSquaresGradPOnly",
                 "leastSquaresGradUOnly", "leastSquaresAllLimited", "pointCellsLeastSquares",
                 "gaussSkewCorrected")
+    shipped = "conservativePressure"                # tutorials/pipe's fvSchemes
 
     def __init__(self):
         Study.__init__(self, "pipe", os.path.join(ROOT, "tutorials", "pipe"),
                        os.path.join(BENCH_DIR, "cases", "pipeSnappy"),
                        PIPE_PMSH_DICT, PIPE_REFERENCE_DP, "dp")
 
+    matrix_sizes = (0.8, 0.57, 0.4, 0.28)
+    layered_sizes = (0.8, 0.57, 0.4)                # 0.28 with layers is among the finest
+    finest = (("netgen", 0.28, True), ("hxt", 0.28, True))
+
+    def sized(self, mesher, h, layered):
+        return self.pmsh_mesh("%s-%g%s" % (mesher, h, "-layers12" if layered else ""),
+                              "pmshFoam %s%s" % (mesher, ", 12 layers" if layered else ""),
+                              mesher, far=h, layers=PIPE_LAYERS_12 if layered else "")
+
     def meshes(self):
-        out = []
-        for h in (0.4, 0.28):
-            out.append(self.pmsh_mesh("netgen-%g" % h, "pmshFoam netgen", "netgen", far=h))
-        out.append(self.pmsh_mesh("hxt-0.4", "pmshFoam hxt", "hxt", far=0.4))
+        out = self.mesher_matrix()
         out.append(self.pmsh_mesh("netgen-0.4-layers5", "pmshFoam netgen, 5 layers", "netgen",
                                   far=0.4, layers=PIPE_LAYERS_5))
-        out.append(self.pmsh_mesh("netgen-0.4-layers12", "pmshFoam netgen, 12 layers",
-                                  "netgen", far=0.4, layers=PIPE_LAYERS_12))
         for layers in (0, 5):
             for level in ((1, 2) if not layers else (1,)):
                 out.append({"name": "snappy-L%d%s" % (level, "-layers" if layers else ""),
@@ -576,17 +599,25 @@ def gradient_error(study, case, np, grad):
     return {"mean": sum(errors)/len(errors), "p99": errors[int(0.99*(len(errors) - 1))]}
 
 
+def redo(args, name):
+    return "all" in args.redo or name in args.redo
+
+
 def build_mesh(args, study, m, res):
-    """Mesh m (unless measured already), check it, store what it is"""
+    """Mesh m (unless measured already), check it, store what it is. The
+    solutions of a mesh made again are dropped: they were of the old one."""
     case = os.path.join(args.work, study.name, m["name"])
     record = res["meshes"].get(m["name"])
-    if record and record.get("ok") and os.path.isdir(case) and m["name"] not in args.redo:
+    if record and record.get("ok") and os.path.isdir(case) and not redo(args, m["name"]):
         return case
+    for key in [k for k in res["solutions"] if k.split("/", 1)[0] == m["name"]]:
+        del res["solutions"][key]
     pb.log("Meshing %s %s (%s)" % (study.name, m["name"], m["family"]))
     builder = build_snappy if m["builder"] == "snappy" else build_pmsh
     ok, wall, text = builder(study, m, case, args.np)
     record = dict((k, v) for k, v in m.items() if k != "regions")
-    record.update({"ok": ok, "meshTime": wall})
+    record.update({"ok": ok, "meshTime": wall, "pmshFoam": pb.command_output(
+        ["git", "-C", ROOT, "rev-parse", "--short", "HEAD"])})
     if not ok:
         record["error"] = pb.first_error(text)
         pb.log("    failed: %s" % record["error"])
@@ -656,7 +687,7 @@ def error_of(study, value):
 def solve(args, study, res, mesh_name, mesh_case, schemes_name, schemes_text):
     key = "%s/%s" % (mesh_name, schemes_name)
     if key in res["solutions"] and res["solutions"][key].get("ok") \
-            and key not in args.redo and mesh_name not in args.redo:
+            and not redo(args, key) and not redo(args, mesh_name):
         return res["solutions"][key]
     case = os.path.join(args.work, study.name, "%s-%s" % (mesh_name, schemes_name))
     solver_case(mesh_case, case, schemes_text, study.functions)
@@ -755,11 +786,12 @@ def pct(study, value):
     return "%+.1f %%" % (100*error_of(study, value)) if value is not None else "-"
 
 
-FAMILY_ORDER = ["pmshFoam netgen", "pmshFoam hxt", "polyDualMesh of pmshFoam netgen",
-                "snappyHexMesh", "snappyHexMesh, 5 layers", "pmshFoam netgen, 5 layers",
-                "pmshFoam netgen, 12 layers"]
+FAMILY_ORDER = ["pmshFoam netgen", "pmshFoam hxt", "pmshFoam netgen, 3 layers",
+                "pmshFoam hxt, 3 layers", "pmshFoam netgen, 12 layers",
+                "pmshFoam hxt, 12 layers", "pmshFoam netgen, 5 layers",
+                "polyDualMesh of pmshFoam netgen", "snappyHexMesh", "snappyHexMesh, 5 layers"]
 # One colour a family in every panel, whichever families a panel has
-FAMILY_COLOURS = dict(zip(FAMILY_ORDER, ["C0", "C1", "C2", "C3", "C4", "C5", "C6"]))
+FAMILY_COLOURS = dict(zip(FAMILY_ORDER, ["C%d" % i for i in range(len(FAMILY_ORDER))]))
 
 
 def diverged(study, s):
@@ -1001,7 +1033,11 @@ def main():
     parser.add_argument("--schemes", default="",
                         help="comma-separated scheme sets (default: all)")
     parser.add_argument("--redo", default="", help="comma-separated mesh or solution names"
-                        " (mesh/schemes) to measure again")
+                        " (mesh/schemes) to measure again, or 'all'")
+    parser.add_argument("--shipped", action="store_true",
+                        help="only the mesher matrix (both meshers at four sizes, with and"
+                        " without the tutorial's layers, and the finest), each solved with"
+                        " its tutorial's own schemes")
     parser.add_argument("--keep", action="store_true", help="keep the solved cases' meshes")
     parser.add_argument("--rewrite", action="store_true", help="only rewrite the report")
     parser.add_argument("--no-build", action="store_true")
@@ -1024,7 +1060,7 @@ def main():
                 continue
             res = results[study.name]
             os.makedirs(os.path.join(args.work, study.name), exist_ok=True)
-            for m in study.meshes():
+            for m in (study.mesher_matrix() if args.shipped else study.meshes()):
                 if only and m["name"] not in only:
                     continue
                 case = build_mesh(args, study, m, res)
@@ -1032,10 +1068,10 @@ def main():
                 if not case:
                     continue
                 for name in study.scheme_sets:
-                    if name in schemes:
+                    if name in schemes and (name == study.shipped or not args.shipped):
                         solve(args, study, res, m["name"], case, name, SCHEMES[name][1])
                         save(results, args.out)
-                if m["name"] == study.reference_mesh:
+                if m["name"] == study.reference_mesh and not args.shipped:
                     for name in study.variants:
                         text = (SCHEME_VARIANTS.get(name) or SCHEMES[name])[1]
                         solve(args, study, res, m["name"], case, name, text)
