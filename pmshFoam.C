@@ -231,7 +231,7 @@ static void meshCase
     (
         "coarse",
         "Stage 1: coarse mesh (Netgen surface, " + settings.coarseMesher
-      + " volume) of " + settings.geometryFile
+      + " volume) of " + settings.geometryText()
     );
     pmsh::CoarseMesh coarse = pmsh::generateCoarseMesh
     (

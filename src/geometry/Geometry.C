@@ -1,10 +1,11 @@
 /*---------------------------------------------------------------------------*\
-  pmshFoam: Geometry::New, selection by the file extension (OpenFOAM's
+  pmshFoam: Geometry::New, selection by the files' types (OpenFOAM's
   run-time selection table, which each geometry type adds itself to).
 \*---------------------------------------------------------------------------*/
 
 #include "Geometry.H"
 #include "pmshError.H"
+#include "surfaceFiles.H"
 
 #include <algorithm>
 #include <cctype>
@@ -21,38 +22,53 @@ namespace pmsh
 
 // * * * * * * * * * * * * * * * * Selectors  * * * * * * * * * * * * * * * //
 
-std::unique_ptr<pmsh::Geometry> pmsh::Geometry::New(const std::string& fileName)
+std::unique_ptr<pmsh::Geometry> pmsh::Geometry::New
+(
+    const std::vector<std::string>& fileNames
+)
 {
-    // Extension of the file name (not of a directory), lower case
-    const std::size_t slash = fileName.find_last_of('/');
-    const std::size_t dot = fileName.find_last_of('.');
-    std::string ext;
-    if (dot != std::string::npos && (slash == std::string::npos || dot > slash))
+    const char* function = "pmsh::Geometry::New";
+    const std::string valid =
+        "Valid geometry files: one Netgen CSG file (.geo), or one or more surface"
+        " files (" + readableSurfaceTypes() + ", any of them gzip-compressed as"
+        " .obj.gz)";
+    if (fileNames.empty())
     {
-        ext = fileName.substr(dot + 1);
+        throw FatalError("No geometry file given.\n" + valid, function);
     }
-    std::transform
-    (
-        ext.begin(), ext.end(), ext.begin(),
-        [](unsigned char c) { return char(std::tolower(c)); }
-    );
-
-    const word key(ext, false);
+    std::string csgFile;
+    for (const std::string& f : fileNames)
+    {
+        if (surfaceFileType(f) == "geo")
+        {
+            csgFile = f;
+        }
+        else if (!canReadSurfaceFile(f))
+        {
+            throw FatalError
+            (
+                msg() << "Unknown geometry file type \"" << f << "\""
+                    << (surfaceFileType(f).empty() ? " (no extension)" : "")
+                    << ".\n" << valid,
+                function
+            );
+        }
+    }
+    if (!csgFile.empty() && fileNames.size() > 1)
+    {
+        throw FatalError
+        (
+            msg() << "The Netgen CSG file \"" << csgFile << "\" cannot be meshed"
+                << " with other files: a CSG geometry is one file.\n" << valid,
+            function
+        );
+    }
+    const word key(csgFile.empty() ? "surface" : "geo");
     if (!extensionConstructorTablePtr_ || !extensionConstructorTablePtr_->found(key))
     {
-        msg m;
-        m   << "Unknown geometry file type \"" << fileName << "\""
-            << (ext.empty() ? " (no extension)" : "") << ".\nValid extensions:";
-        if (extensionConstructorTablePtr_)
-        {
-            for (const word& valid : extensionConstructorTablePtr_->sortedToc())
-            {
-                m   << "\n    ." << valid;
-            }
-        }
-        throw FatalError(m, "pmsh::Geometry::New");
+        throw FatalError("No geometry type '" + key + "' is linked in", function);
     }
-    return (*extensionConstructorTablePtr_)[key](fileName);
+    return (*extensionConstructorTablePtr_)[key](fileNames);
 }
 
 

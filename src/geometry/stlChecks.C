@@ -350,7 +350,7 @@ double pmsh::enclosedVolume(const stlSurface& s)
 }
 
 
-void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
+void pmsh::checkStl(const stlSurface& s, const std::string& what)
 {
     const char* function = "pmsh::checkStl";
     const label nt = s.nTriangles();
@@ -384,7 +384,7 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
             throw FatalError
             (
                 msg()
-                    << "STL file \"" << fileName << "\" has " << nBad
+                    << what << " has " << nBad
                     << " degenerate (zero-area) triangle(s), e.g. triangle "
                     << first << " of solid " << s.solidNames[s.solid[first]]
                     << ": " << stlPoint(s.points[f[0]]) << ' ' << stlPoint(s.points[f[1]])
@@ -427,7 +427,7 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
         throw FatalError
         (
             msg()
-                << "STL file \"" << fileName << "\" is not manifold: "
+                << what << " is not manifold: "
                 << nNonManifold << " edge(s) are used by more than two"
                 << " triangles, e.g. the edge " << edge(e) << " by "
                 << atEdge.size() << " triangles of " << solids
@@ -448,7 +448,7 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
         throw FatalError
         (
             msg()
-                << "STL file \"" << fileName << "\" is not closed: " << nOpen
+                << what << " is not closed: " << nOpen
                 << " edge(s) are used by only one triangle, e.g. the edge "
                 << edge(defects.firstOpen) << ".\nThe surface must enclose a volume: fill"
                 << " the holes (vertices of neighbouring triangles must match"
@@ -461,7 +461,7 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
         throw FatalError
         (
             msg()
-                << "STL file \"" << fileName << "\" is inconsistently"
+                << what << " is inconsistently"
                 << " oriented: " << nFlipped << " edge(s) are traversed in the"
                 << " same direction by both their triangles (one of the two"
                 << " normals is flipped), e.g. the edge " << edge(defects.firstInconsistent)
@@ -470,12 +470,12 @@ void pmsh::checkStl(const stlSurface& s, const std::string& fileName)
         );
     }
 
-    checkShellContacts(s, fileName);
-    checkShellOrientation(s, fileName);
+    checkShellContacts(s, what);
+    checkShellOrientation(s, what);
 }
 
 
-void pmsh::checkShellContacts(const stlSurface& s, const std::string& fileName)
+void pmsh::checkShellContacts(const stlSurface& s, const std::string& what)
 {
     label nSheets = 0;
     const std::vector<label> sheet = manifoldSheets(s, nSheets);
@@ -538,7 +538,7 @@ void pmsh::checkShellContacts(const stlSurface& s, const std::string& fileName)
 
     msg message;
     message
-        << "STL file \"" << fileName << "\": " << contacts.size()
+        << what << ": " << contacts.size()
         << " pair(s) of closed surfaces touch or overlap:";
     constexpr std::size_t shown = 5;
     for (std::size_t i = 0; i < contacts.size() && i < shown; ++i)
@@ -558,7 +558,7 @@ void pmsh::checkShellContacts(const stlSurface& s, const std::string& fileName)
 }
 
 
-void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileName)
+void pmsh::checkShellOrientation(const stlSurface& s, const std::string& what)
 {
     const char* function = "pmsh::checkShellOrientation";
 
@@ -607,7 +607,7 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
             throw FatalError
             (
                 msg()
-                    << "STL file \"" << fileName << "\": the closed surface of "
+                    << what << ": the closed surface of "
                     << solidsOfShell(sh) << " encloses no volume",
                 function
             );
@@ -641,7 +641,7 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
             throw FatalError
             (
                 msg()
-                    << "STL file \"" << fileName << "\" is oriented inward: the"
+                    << what << " is oriented inward: the"
                     << " closed surface of " << solidsOfShell(sh) << extentOf(sh)
                     << " encloses a negative volume (" << v6/6 << ").\nIts triangle normals"
                     << " point into the solid: flip the normals (reverse the"
@@ -655,7 +655,7 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& fileNam
             throw FatalError
             (
                 msg()
-                    << "STL file \"" << fileName << "\": the closed surface of "
+                    << what << ": the closed surface of "
                     << solidsOfShell(sh) << extentOf(sh) << " lies inside that of " << around
                     << " but its normals point out of it, into the fluid"
                     << " around it.\nA body in the flow is a hole in the"

@@ -6,6 +6,7 @@
 
 #include "stlGeometry.H"
 #include "stlGeometryImpl.H"
+#include "surfaceFiles.H"
 #include "pmshError.H"
 #include "matchByPoints.H"
 
@@ -90,23 +91,23 @@ void pmsh::stlGeometryImpl::buildRegionEdges
 }
 
 
-// STL files, ascii or binary
+// Surface files of every format (Geometry::New)
 namespace pmsh
 {
-    addNamedToRunTimeSelectionTable(Geometry, stlGeometry, extension, stl);
+    addNamedToRunTimeSelectionTable(Geometry, stlGeometry, extension, surface);
 }
 
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
-pmsh::stlGeometry::stlGeometry(const std::string& fileName)
+pmsh::stlGeometry::stlGeometry(const std::vector<std::string>& fileNames)
 :
-    fileName_(fileName),
+    what_(describeSurfaceFiles(fileNames)),
     impl_(new impl)
 {
     impl& d = *impl_;
-    d.surface = readStl(fileName);
-    checkStl(d.surface, fileName);
+    d.surface = readSurfaceFiles(fileNames);
+    checkStl(d.surface, what_);
 
     const stlSurface& s = d.surface;
     const label nt = s.nTriangles();
@@ -261,8 +262,8 @@ pmsh::point3 pmsh::stlGeometry::projectToSurface(const point3& p, label s) const
         throw FatalError
         (
             msg()
-                << "Surface " << s << " does not exist in STL geometry \""
-                << fileName_ << "\": valid surfaces are 0.." << d.nRegions - 1,
+                << "Surface " << s << " does not exist in " << what_
+                << ": valid surfaces are 0.." << d.nRegions - 1,
             "pmsh::stlGeometry::projectToSurface"
         );
     }

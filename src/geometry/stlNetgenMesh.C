@@ -248,10 +248,9 @@ ng::volumeMesh retriedStlMesh
     const stlGeometry& geometry,
     const ng::meshParameters& configured,
     const coarseMeshParameters& sizes,
-    const std::string& fileName
+    const std::string& what
 )
 {
-    const std::string what = "STL file \"" + fileName + "\"";
     const stlSurface& surface = geometry.surface();
     const std::vector<ladderAttempt<stlMeshSizes>> attempts =
         meshAttempts(sizes.maxCellSize, sizes.curvatureRefinement);
@@ -383,8 +382,8 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
         throw FatalError
         (
             msg()
-                << "maxCellSize " << parameters.maxCellSize << " for STL"
-                << " geometry \"" << fileName_ << "\" must be positive",
+                << "maxCellSize " << parameters.maxCellSize << " for "
+                << what_ << " must be positive",
             function
         );
     }
@@ -394,7 +393,7 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
     mp.surfaceOnly = surfaceOnly;
     mp.regions = parameters.regions;
     mp.sizePoints = parameters.sizePoints;
-    ng::volumeMesh m = retriedStlMesh(*this, mp, parameters, fileName_);
+    ng::volumeMesh m = retriedStlMesh(*this, mp, parameters, what_);
 
     // Netgen's boundary vertices lie on the STL up to rounding; a vertex is
     // "on" a region within this distance
@@ -473,8 +472,8 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
         throw FatalError
         (
             msg()
-                << "Netgen's coarse mesh of STL file \"" << fileName_
-                << "\" does not follow its feature edges: " << nOff
+                << "Netgen's coarse mesh of " << what_
+                << " does not follow its feature edges: " << nOff
                 << " boundary face(s) have vertices on different surfaces"
                 << " (separated by edges sharper than " << featureAngle
                 << " degrees or between solids), or off the STL (largest"

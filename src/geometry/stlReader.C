@@ -4,6 +4,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "stlReader.H"
+#include "surfaceBuilder.H"
 #include "pmshError.H"
 
 #include <algorithm>
@@ -15,121 +16,14 @@
 #include <sstream>
 #include <unordered_map>
 
+#include <zlib.h>
+
 // * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
 
 namespace pmsh
 {
 namespace
 {
-
-//- Characters OpenFOAM does not accept in a word (a patch name).
-bool validWordChar(char c)
-{
-    return !std::isspace(static_cast<unsigned char>(c))
-        && c != '"' && c != '\'' && c != '/' && c != ';'
-        && c != '{' && c != '}' && c != '\\';
-}
-
-
-std::string sanitise(const std::string& name)
-{
-    std::string r;
-    for (char c : name)
-    {
-        if (validWordChar(c))
-        {
-            r += c;
-        }
-    }
-    return r;
-}
-
-
-//- Exact-coordinate key of a point: equal keys <=> equal coordinates
-//  (after +0.0 folds -0.0 into 0.0).
-struct pointKey
-{
-    std::uint64_t bits[3];
-
-    explicit pointKey(const point3& p)
-    {
-        for (int k = 0; k < 3; ++k)
-        {
-            const double x = p[k] + 0.0;
-            std::memcpy(&bits[k], &x, sizeof(double));
-        }
-    }
-
-    bool operator==(const pointKey& o) const
-    {
-        return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
-    }
-};
-
-
-struct pointKeyHash
-{
-    std::size_t operator()(const pointKey& k) const
-    {
-        std::uint64_t h = 0x9e3779b97f4a7c15ull;
-        for (std::uint64_t b : k.bits)
-        {
-            h ^= b + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
-        }
-        return std::size_t(h);
-    }
-};
-
-
-//- Builds an stlSurface: merges points and names solids.
-class surfaceBuilder
-{
-    stlSurface& s_;
-    std::unordered_map<pointKey, label, pointKeyHash> pointIndex_;
-    std::string stem_;
-
-public:
-
-    surfaceBuilder(stlSurface& s, const std::string& stem)
-    :
-        s_(s),
-        stem_(stem)
-    {}
-
-    label addSolid(const std::string& rawName)
-    {
-        std::string name = sanitise(rawName);
-        if (name.empty())
-        {
-            name = stem_;
-        }
-        const auto it = std::find(s_.solidNames.begin(), s_.solidNames.end(), name);
-        if (it != s_.solidNames.end())
-        {
-            return label(it - s_.solidNames.begin());
-        }
-        s_.solidNames.push_back(name);
-        return label(s_.solidNames.size()) - 1;
-    }
-
-    label addPoint(const point3& p)
-    {
-        const point3 q{p[0] + 0.0, p[1] + 0.0, p[2] + 0.0};
-        const auto ins = pointIndex_.emplace(pointKey(q), label(s_.points.size()));
-        if (ins.second)
-        {
-            s_.points.push_back(q);
-        }
-        return ins.first->second;
-    }
-
-    void addTriangle(const point3& a, const point3& b, const point3& c, label solid)
-    {
-        s_.triangles.push_back({addPoint(a), addPoint(b), addPoint(c)});
-        s_.solid.push_back(solid);
-    }
-};
-
 
 //- A cursor over an ascii STL buffer that knows its line number.
 class asciiScanner
@@ -380,11 +274,77 @@ bool looksAscii(const std::string& buf)
 
 // * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * * //
 
+std::string pmsh::fileBytes(const std::string& fileName, const std::string& type)
+{
+    const char* function = "pmsh::fileBytes";
+    std::string buf;
+    if (isGzipped(fileName))
+    {
+        gzFile in = gzopen(fileName.c_str(), "rb");
+        if (!in)
+        {
+            throw FatalError
+            (
+                msg() << "Cannot open " << type << " file \"" << fileName << '"',
+                function
+            );
+        }
+        char chunk[1 << 16];
+        int n = 0;
+        while ((n = gzread(in, chunk, sizeof(chunk))) > 0)
+        {
+            buf.append(chunk, std::size_t(n));
+        }
+        int status = Z_OK;
+        const std::string problem = n < 0 ? gzerror(in, &status) : "";
+        gzclose(in);
+        if (n < 0)
+        {
+            throw FatalError
+            (
+                msg() << "Cannot decompress " << type << " file \"" << fileName
+                    << "\": " << problem << " (a damaged or truncated .gz?)",
+                function
+            );
+        }
+        return buf;
+    }
+    std::ifstream is(fileName, std::ios::binary);
+    if (!is.good())
+    {
+        throw FatalError
+        (
+            msg() << "Cannot open " << type << " file \"" << fileName << '"',
+            function
+        );
+    }
+    buf.assign
+    (
+        (std::istreambuf_iterator<char>(is)),
+        std::istreambuf_iterator<char>()
+    );
+    return buf;
+}
+
+
+bool pmsh::isGzipped(const std::string& fileName)
+{
+    const std::size_t n = fileName.size();
+    return n > 3 && fileName[n - 3] == '.'
+        && std::tolower(static_cast<unsigned char>(fileName[n - 2])) == 'g'
+        && std::tolower(static_cast<unsigned char>(fileName[n - 1])) == 'z';
+}
+
+
 std::string pmsh::fileStem(const std::string& fileName)
 {
     const std::size_t slash = fileName.find_last_of('/');
     std::string name =
         slash == std::string::npos ? fileName : fileName.substr(slash + 1);
+    if (isGzipped(name))
+    {
+        name.resize(name.size() - 3);
+    }
     const std::size_t dot = name.find_last_of('.');
     if (dot != std::string::npos && dot > 0)
     {
@@ -398,20 +358,7 @@ pmsh::stlSurface pmsh::readStl(const std::string& fileName)
 {
     const char* function = "pmsh::readStl";
 
-    std::ifstream is(fileName, std::ios::binary);
-    if (!is.good())
-    {
-        throw FatalError
-        (
-            msg() << "Cannot open STL file \"" << fileName << '"',
-            function
-        );
-    }
-    std::string buf
-    (
-        (std::istreambuf_iterator<char>(is)),
-        std::istreambuf_iterator<char>()
-    );
+    const std::string buf = fileBytes(fileName, "STL");
 
     if (buf.empty())
     {

@@ -3,6 +3,7 @@
 #include "foamShims.H"
 #include "VolumeMesher.H"
 #include "layerSpecification.H"
+#include "surfaceFiles.H"
 
 #include <algorithm>
 #include <cctype>
@@ -29,77 +30,120 @@ const char* const where = "pmsh::readMeshSettings";
 const entryChecks check(where);
 
 
-std::string readGeometry(const dictionary& d, const std::string& caseDir)
+//- What is wrong with geometry file path (given as name), or "".
+std::string geometryFileProblem(const std::string& name, const std::string& path,
+                                const std::string& caseDir)
+{
+    const std::string type = surfaceFileType(path);
+    std::error_code ec;
+    if (type != "geo" && !canReadSurfaceFile(path))
+    {
+        return
+            (type.empty()
+           ? std::string("the file name has no extension")
+           : "the file type '." + type + "' is not supported")
+          + "\nValid geometry files are: .geo (Netgen CSG), or surface files "
+          + readableSurfaceTypes() + ", in any letter case and gzip-compressed"
+            " too (.stl.gz, .obj.gz, ...)";
+    }
+    if (!fs::exists(path, ec))
+    {
+        return
+            "the file \"" + path + "\" does not exist\n"
+            "Relative names are relative to the case directory \""
+          + caseDir + "\"";
+    }
+    if (!fs::is_regular_file(path, ec))
+    {
+        return "\"" + path + "\" is not a regular file";
+    }
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe || probe.peek() == std::ifstream::traits_type::eof())
+    {
+        return
+            "the file \"" + path + "\" "
+          + (probe ? "is empty" : "cannot be read (check its permissions)");
+    }
+    (void)name;
+    return "";
+}
+
+
+//- The geometry: one file name, or a list of surface files, each checked
+//  to exist and be of a type that can be read.
+std::vector<std::string> readGeometry(const dictionary& d, const std::string& caseDir)
 {
     const char* const validFiles =
-        "Valid geometry files: .geo (Netgen CSG), .stl (ascii or binary STL)";
+        "Valid geometry: one .geo (Netgen CSG) file, or one or more surface files"
+        " (STL, OBJ, VTK, ...), e.g.\n"
+        "    geometry \"constant/geometry/body.stl\";\n"
+        "    geometry (\"constant/geometry/box.stl\" \"constant/geometry/body.obj.gz\");";
     const entry* e = foam::findEntry(d, "geometry");
     if (!e)
     {
         check.error(d, "geometry")
             << "Entry 'geometry' not found\n"
-            << "Set it to the geometry file, relative to the case directory,"
-            << " e.g.\n    geometry \"constant/geometry/body.stl\";\n"
+            << "Set it to the geometry file, relative to the case directory\n"
             << validFiles << Foam::exit(Foam::FatalIOError);
     }
-    const Foam::token* t = singleToken(*e);
-    if (!t || !foam::isStringType(*t))
+
+    // A string, or a list of strings in parentheses
+    std::vector<std::string> names;
+    bool valid = !e->isDict();
+    if (valid)
+    {
+        Foam::ITstream& is = e->stream();
+        is.rewind();
+        const Foam::label n = is.size();
+        const bool list =
+            n >= 2 && is[0].isPunctuation() && is[0].pToken() == Foam::token::BEGIN_LIST
+         && is[n - 1].isPunctuation() && is[n - 1].pToken() == Foam::token::END_LIST;
+        for (Foam::label i = list ? 1 : 0; i < (list ? n - 1 : n); ++i)
+        {
+            valid = valid && foam::isStringType(is[i]);
+            if (valid)
+            {
+                names.push_back(foam::stringToken(is[i]));
+            }
+        }
+        valid = valid && !names.empty() && (list || names.size() == 1);
+    }
+    if (!valid)
     {
         check.invalid
         (
             d, *e,
-            "geometry must be a file name in quotes, relative to the case"
-            " directory, e.g. \"constant/geometry/body.stl\"\n"
+            "geometry must be a file name in quotes, or a list of them in"
+            " parentheses, relative to the case directory\n"
           + std::string(validFiles)
         );
     }
-    const std::string name = foam::stringToken(*t);
-    const std::string path = casePath(caseDir, name);
 
-    std::string ext = fs::path(path).extension().string();
-    const std::string given = ext;
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-
-    std::string problem;
-    std::error_code ec;
-    if (ext != ".geo" && ext != ".stl")
+    std::vector<std::string> paths;
+    for (const std::string& name : names)
     {
-        problem =
-            given.empty()
-          ? "the file name has no extension"
-          : "the file extension '" + given + "' is not supported";
-        problem +=
-            "\nValid geometry file extensions are: .geo (Netgen CSG),"
-            " .stl (ascii or binary STL), in any letter case";
-    }
-    else if (!fs::exists(path, ec))
-    {
-        problem =
-            "the file \"" + path + "\" does not exist\n"
-            "Relative names are relative to the case directory \""
-          + caseDir + "\"";
-    }
-    else if (!fs::is_regular_file(path, ec))
-    {
-        problem = "\"" + path + "\" is not a regular file\n" + validFiles;
-    }
-    else
-    {
-        std::ifstream probe(path, std::ios::binary);
-        if (!probe || probe.peek() == std::ifstream::traits_type::eof())
+        const std::string path = casePath(caseDir, name);
+        std::string problem = geometryFileProblem(name, path, caseDir);
+        if (problem.empty() && std::find(paths.begin(), paths.end(), path) != paths.end())
+        {
+            problem = "it is given twice";
+        }
+        if (problem.empty() && names.size() > 1 && surfaceFileType(path) == "geo")
         {
             problem =
-                "the file \"" + path + "\" "
-              + (probe ? "is empty" : "cannot be read (check its permissions)");
+                "a Netgen CSG geometry is one file: it cannot be meshed with"
+                " other files";
         }
+        if (!problem.empty())
+        {
+            check.error(d, *e)
+                << "Entry 'geometry'"
+                << (names.size() > 1 ? ": file \"" : " is \"") << name.c_str()
+                << "\": " << problem.c_str() << Foam::exit(Foam::FatalIOError);
+        }
+        paths.push_back(path);
     }
-    if (!problem.empty())
-    {
-        check.error(d, *e)
-            << "Entry 'geometry' is \"" << name.c_str() << "\": "
-            << problem.c_str() << Foam::exit(Foam::FatalIOError);
-    }
-    return path;
+    return paths;
 }
 
 
@@ -410,7 +454,7 @@ meshSettings readMeshSettings
         }
     }
 
-    s.geometryFile = readGeometry(dict, caseDir);
+    s.geometryFiles = readGeometry(dict, caseDir);
 
     const std::string validSize =
         "maxCellSize must be a number > 0: the largest edge length of the"
@@ -512,6 +556,17 @@ meshSettings readMeshSettings
 }
 
 } // End namespace pmsh
+
+
+std::string pmsh::meshSettings::geometryText() const
+{
+    std::string text;
+    for (const std::string& f : geometryFiles)
+    {
+        text += (text.empty() ? "\"" : " + \"") + f + "\"";
+    }
+    return text;
+}
 
 
 // ************************************************************************* //

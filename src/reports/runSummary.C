@@ -43,6 +43,17 @@ std::string jsonString(const std::string& s)
     return quoted + '"';
 }
 
+// A JSON array of strings
+std::string jsonStrings(const std::vector<std::string>& values)
+{
+    std::string list = "[";
+    for (std::size_t i = 0; i < values.size(); ++i)
+    {
+        list += (i ? ", " : "") + jsonString(values[i]);
+    }
+    return list + ']';
+}
+
 // The run's figures from every rank (collective)
 struct runFigures
 {
@@ -201,11 +212,18 @@ void writeSummaryJson
     const std::string dir = caseDir + "/postProcessing/pmshFoam";
     std::filesystem::create_directories(dir);
     std::ofstream os(dir + "/summary.json");
+    // One file as it is; several joined by " + " (all in geometryFiles)
+    std::string geometry;
+    for (const std::string& f : settings.geometryFiles)
+    {
+        geometry += (geometry.empty() ? "" : " + ") + f;
+    }
     os  << std::setprecision(10)
         << "{\n"
         << "  \"application\": \"pmshFoam\",\n"
         << "  \"ranks\": " << comm.size() << ",\n"
-        << "  \"geometry\": " << jsonString(settings.geometryFile) << ",\n"
+        << "  \"geometry\": " << jsonString(geometry) << ",\n"
+        << "  \"geometryFiles\": " << jsonStrings(settings.geometryFiles) << ",\n"
         << "  \"maxCellSize\": " << settings.maxCellSize << ",\n"
         << "  \"grading\": " << settings.grading << ",\n"
         << "  \"refinementLevels\": " << settings.refinementLevels << ",\n"

@@ -265,11 +265,11 @@ class cases:
                    "does not exist", "relative to the case directory"]
 
     def unknownGeometryExtension(self):
-        c = self.case("sphere", geometry='"constant/geometry/sphere.obj"')
+        c = self.case("sphere", geometry='"constant/geometry/sphere.step"')
         shutil.copy(self.path(c, "constant/geometry/sphere.geo"),
-                    self.path(c, "constant/geometry/sphere.obj"))
-        return c, ["sphere.obj", "Entry 'geometry'", self.dict_line(c, "geometry"),
-                   "'.obj' is not supported", ".geo (Netgen CSG)", ".stl"]
+                    self.path(c, "constant/geometry/sphere.step"))
+        return c, ["sphere.step", "Entry 'geometry'", self.dict_line(c, "geometry"),
+                   "'.step' is not supported", ".geo (Netgen CSG)", ".stl", ".obj"]
 
     def geoSyntaxError(self):
         c = self.case("sphere")
@@ -407,7 +407,7 @@ class badInput(BadInputTest, cases):
                     self.path(c, "constant/geometry/sphere"))
         self.expect_fatal(c, ["constant/geometry/sphere", "Entry 'geometry'",
                               self.dict_line(c, "geometry"), "has no extension",
-                              "Valid geometry file extensions are: .geo"])
+                              "Valid geometry files are: .geo"])
 
     def test_geoSyntaxErrorNamesItsLine(self):
         self.expect_fatal(*self.geoSyntaxError())

@@ -7,6 +7,7 @@ reports the points the fold repair left off the geometry.
 Run one test:  python3 testBodyInBox.py bodyInBox.test_stlNp2
 """
 
+import gzip
 import os
 import re
 import shutil
@@ -69,7 +70,10 @@ class bodyInBox(CaseTest):
         bcnames with their types, the estimate after stage 1 within
         0.67-1.5 of the fine cells unless told otherwise; returns (case,
         summary.json)."""
-        c = self.body_case(geometry, **entries)
+        return self.mesh_case(self.body_case(geometry, **entries), np, estimate_within_band)
+
+    def mesh_case(self, c, np, estimate_within_band=True):
+        """mesh() on a case made already"""
         _, log = c.run("pmshFoam", np=np)
         self.assertIn("End", log)
         text = c.check_mesh(np=np)
@@ -106,6 +110,39 @@ class bodyInBox(CaseTest):
 
     def test_stlNp4(self):
         self.mesh("sphereInBox.stl", 4)
+
+    def test_aBoxInStlAndABodyInGzippedObjMeshAsTheirOneStlFileNp2(self):
+        """geometry ("box.stl" "body.obj.gz"): sphereInBox.stl's box solids
+        in one STL, its body as an OBJ group read by OpenFOAM's triSurface
+        from a .gz; the same coordinates, so the same mesh to the bit."""
+        one, _ = self.mesh("sphereInBox.stl", 2)
+        c = self.body_case("sphereInBox.stl")
+        geometry = os.path.join(c.dir, "constant", "geometry")
+        with open(os.path.join(geometry, "sphereInBox.stl")) as f:
+            solids = re.findall(r"(?ms)^solid (\w+)\n(.*?)endsolid \1", f.read())
+        self.assertEqual([name for name, _ in solids], ["inlet", "outlet", "sides", "body"])
+        os.remove(os.path.join(geometry, "sphereInBox.stl"))
+        with open(os.path.join(geometry, "box.stl"), "w") as f:
+            for name, text in solids[:3]:
+                f.write("solid %s\n%sendsolid %s\n" % (name, text, name))
+        points, faces = {}, []
+        for t in re.findall(r"outer loop\s+(.*?)endloop", solids[3][1], re.S):
+            corners = [tuple(float(x) for x in v) for v in re.findall(
+                r"vertex\s+(\S+)\s+(\S+)\s+(\S+)", t)]
+            faces.append([points.setdefault(p, len(points) + 1) for p in corners])
+        with gzip.open(os.path.join(geometry, "body.obj.gz"), "wt") as f:
+            f.write("".join("v %r %r %r\n" % p for p in points))
+            f.write("g body\n" + "".join("f %d %d %d\n" % tuple(t) for t in faces))
+        c.set_entry("system/pmshDict", "geometry",
+                    '("constant/geometry/box.stl" "constant/geometry/body.obj.gz")')
+        two, summary = self.mesh_case(c, 2)
+        self.assertEqual(summary["geometryFiles"], [os.path.join(geometry, "box.stl"),
+                                                    os.path.join(geometry, "body.obj.gz")])
+        for rank in ("processor0", "processor1"):
+            a = two.polymesh("%s/constant/polyMesh" % rank)
+            b = one.polymesh("%s/constant/polyMesh" % rank)
+            self.assertEqual(a.points(), b.points(), rank)
+            self.assertEqual(a.faces(), b.faces(), rank)
 
     def test_cadLikeStlWithSharpEdgesAndThinTrianglesNp2(self):
         self.mesh("cylinderInBox.stl", 2)

@@ -30,7 +30,7 @@ meshSettings sphereSettings(int levels, const std::string& mesher = "netgen", in
 {
     meshSettings s;
     s.dictFile = "/cases/sphere/system/pmshDict";
-    s.geometryFile = "/cases/sphere/constant/geometry/sphere.geo";
+    s.geometryFiles = {"/cases/sphere/constant/geometry/sphere.geo"};
     s.maxCellSize = 0.25;
     s.refinementLevels = levels;
     s.refinementLevelsLine = line;

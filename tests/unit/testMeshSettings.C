@@ -122,7 +122,7 @@ TEST_F(meshSettingsTest, readsEveryEntry)
         "patches\n{\n    inlet { type patch; }\n}\n"
     );
     EXPECT_EQ(s.dictFile, dictName);
-    EXPECT_EQ(s.geometryFile, fs::absolute(dir + "/constant/geometry/Shape.GEO").lexically_normal().string());
+    EXPECT_EQ(s.geometryFiles.at(0), fs::absolute(dir + "/constant/geometry/Shape.GEO").lexically_normal().string());
     EXPECT_DOUBLE_EQ(s.maxCellSize, 0.25);
     EXPECT_DOUBLE_EQ(s.grading, 0.5);
     EXPECT_EQ(s.refinementLevels, 3);
@@ -137,7 +137,7 @@ TEST_F(meshSettingsTest, readsEveryEntry)
 TEST_F(meshSettingsTest, optionalEntriesHaveTheirDefaults)
 {
     const meshSettings s = read(minimal());
-    EXPECT_EQ(s.geometryFile, stl);
+    EXPECT_EQ(s.geometryFiles.at(0), stl);
     EXPECT_DOUBLE_EQ(s.maxCellSize, 0.1);
     EXPECT_DOUBLE_EQ(s.grading, 0.3);
     EXPECT_EQ(s.refinementLevels, 1);
@@ -449,15 +449,15 @@ TEST_F(meshSettingsTest, patchTypesDefaultFromNamesACFDUserWouldGive)
 
 TEST_F(meshSettingsTest, geometryIsRelativeToTheCaseUnlessAbsolute)
 {
-    EXPECT_EQ(read(withGeometry("constant/geometry/body.stl")).geometryFile, stl);
-    EXPECT_EQ(read(withGeometry("./constant/../constant/geometry/body.stl")).geometryFile, stl);
-    EXPECT_EQ(read(withGeometry("<case>/constant/geometry/body.stl")).geometryFile, stl);
-    EXPECT_EQ(read(withGeometry("$FOAM_CASE/constant/geometry/body.stl")).geometryFile, stl);
+    EXPECT_EQ(read(withGeometry("constant/geometry/body.stl")).geometryFiles.at(0), stl);
+    EXPECT_EQ(read(withGeometry("./constant/../constant/geometry/body.stl")).geometryFiles.at(0), stl);
+    EXPECT_EQ(read(withGeometry("<case>/constant/geometry/body.stl")).geometryFiles.at(0), stl);
+    EXPECT_EQ(read(withGeometry("$FOAM_CASE/constant/geometry/body.stl")).geometryFiles.at(0), stl);
 
     const tempDir elsewhere{"geometry"};
     const std::string other = elsewhere.file("other.stl", "solid x\nendsolid x\n");
-    EXPECT_EQ(read(withGeometry(other)).geometryFile, fs::absolute(other).lexically_normal().string());
-    EXPECT_TRUE(fs::path(read(minimal()).geometryFile).is_absolute());
+    EXPECT_EQ(read(withGeometry(other)).geometryFiles.at(0), fs::absolute(other).lexically_normal().string());
+    EXPECT_TRUE(fs::path(read(minimal()).geometryFiles.at(0)).is_absolute());
 }
 
 TEST_F(meshSettingsTest, missingGeometryEntryNamesTheValidFiles)
@@ -465,7 +465,7 @@ TEST_F(meshSettingsTest, missingGeometryEntryNamesTheValidFiles)
     const std::string err = errorFor("maxCellSize 0.1;\n");
     EXPECT_HAS(err, "Entry 'geometry' not found");
     EXPECT_HAS(err, "geometry \"constant/geometry/body.stl\";");
-    EXPECT_HAS(err, ".geo (Netgen CSG), .stl (ascii or binary STL)");
+    EXPECT_HAS(err, "one .geo (Netgen CSG) file, or one or more surface files (STL, OBJ, VTK");
     EXPECT_HAS(err, dictName);
 }
 
@@ -478,27 +478,72 @@ TEST_F(meshSettingsTest, missingGeometryFileNamesThePathAndTheCase)
     EXPECT_HAS(err, "at line 1.");
 }
 
-TEST_F(meshSettingsTest, geometryMustHaveAGeoOrStlExtension)
+TEST_F(meshSettingsTest, geometryMustBeOfATypeThatCanBeRead)
 {
-    writeFile(dir + "/constant/geometry/body.obj", "v 0 0 0\n");
-    std::string err = errorFor(withGeometry("constant/geometry/body.obj"));
-    EXPECT_HAS(err, "the file extension '.obj' is not supported");
-    EXPECT_HAS(err, "Valid geometry file extensions are: .geo (Netgen CSG), .stl");
+    writeFile(dir + "/constant/geometry/body.step", "ISO-10303-21;\n");
+    std::string err = errorFor(withGeometry("constant/geometry/body.step"));
+    EXPECT_HAS(err, "the file type '.step' is not supported");
+    EXPECT_HAS(err, "Valid geometry files are: .geo (Netgen CSG), or surface files");
+    EXPECT_HAS(err, ".obj");
+    EXPECT_HAS(err, ".vtk");
     EXPECT_HAS(err, "at line 1.");
 
     writeFile(dir + "/constant/geometry/body", "solid x\nendsolid x\n");
     err = errorFor(withGeometry("constant/geometry/body"));
     EXPECT_HAS(err, "the file name has no extension");
-    EXPECT_HAS(err, "Valid geometry file extensions are");
+    EXPECT_HAS(err, "Valid geometry files are");
+
+    // OpenFOAM's formats, gzip-compressed too, in any letter case
+    for (const char* name : {"body.obj", "body.OBJ.gz", "body.vtk", "body.stl.gz"})
+    {
+        writeFile(dir + "/constant/geometry/" + name, "v 0 0 0\n");
+        EXPECT_EQ(read(withGeometry(std::string("constant/geometry/") + name)).geometryFiles.at(0),
+                  dir + "/constant/geometry/" + name);
+    }
+}
+
+TEST_F(meshSettingsTest, geometryTakesAListOfSurfaceFiles)
+{
+    writeFile(dir + "/constant/geometry/box.obj", "v 0 0 0\n");
+    const meshSettings s = read
+    (
+        "geometry (\"constant/geometry/body.stl\" \"<case>/constant/geometry/box.obj\");\n"
+        "maxCellSize 0.1;\n"
+    );
+    EXPECT_EQ(s.geometryFiles, (std::vector<std::string>{stl, dir + "/constant/geometry/box.obj"}));
+    EXPECT_EQ(s.geometryText(), "\"" + stl + "\" + \"" + dir + "/constant/geometry/box.obj\"");
+
+    std::string err = errorFor
+    (
+        "geometry (\"constant/geometry/body.stl\" \"constant/geometry/body.stl\");\n"
+        "maxCellSize 0.1;\n"
+    );
+    EXPECT_HAS(err, "Entry 'geometry': file \"constant/geometry/body.stl\": it is given twice");
+
+    writeFile(dir + "/constant/geometry/shape.geo", "algebraic3d\n");
+    err = errorFor
+    (
+        "geometry (\"constant/geometry/body.stl\" \"constant/geometry/shape.geo\");\n"
+        "maxCellSize 0.1;\n"
+    );
+    EXPECT_HAS(err, "a Netgen CSG geometry is one file");
+
+    err = errorFor
+    (
+        "geometry (\"constant/geometry/body.stl\" \"constant/geometry/missing.obj\");\n"
+        "maxCellSize 0.1;\n"
+    );
+    EXPECT_HAS(err, "file \"constant/geometry/missing.obj\": the file");
+    EXPECT_HAS(err, "does not exist");
 }
 
 TEST_F(meshSettingsTest, geometryMustBeAQuotedFileName)
 {
-    for (const char* bad : {"constant/geometry/body.stl", "(a b)", "1"})
+    for (const char* bad : {"constant/geometry/body.stl", "()", "(\"a.stl\" 1)", "1", "\"a.stl\" \"b.stl\""})
     {
         const std::string err = errorFor("geometry " + std::string(bad) + ";\nmaxCellSize 0.1;\n");
         EXPECT_HAS(err, "Entry 'geometry' is ");
-        EXPECT_HAS(err, "geometry must be a file name in quotes");
+        EXPECT_HAS(err, "geometry must be a file name in quotes, or a list of them in parentheses");
         EXPECT_HAS(err, "at line 1.");
     }
 }

@@ -8,6 +8,7 @@
 #include "csgGeometry.H"
 #include "stlGeometry.H"
 #include "stlReader.H"
+#include "surfaceFiles.H"
 #include "partitionVolume.H"
 #include "testUtilities.H"
 
@@ -279,7 +280,7 @@ TEST(stlReader, validationErrors)
     auto check = [&](const boxStl& b)
     {
         const std::string f = dir.file("broken.stl", b.ascii());
-        checkStl(readStl(f), f);
+        checkStl(readStl(f), describeSurfaceFiles({f}));
     };
 
     {
@@ -570,13 +571,13 @@ TEST(stlReader, bodyInABoxIsTwoShellsEachPointingOutOfTheFluid)
     // The body's normals into the fluid: its total volume is still
     // positive, only the shell check sees it
     {
-        const std::string m = errorOf([&]{ checkStl(flipSolids({"body"}), f); });
+        const std::string m = errorOf([&]{ checkStl(flipSolids({"body"}), describeSurfaceFiles({f})); });
         EXPECT_NE(m.find("sphereInBox.stl\": the closed surface of solid body (1280 triangles between ("), std::string::npos) << m;
         EXPECT_NE(m.find(") lies inside that of solids inlet, outlet, sides"), std::string::npos) << m;
         EXPECT_NE(m.find("Flip the normals of solid body"), std::string::npos) << m;
     }
     {
-        const std::string m = errorOf([&]{ checkStl(flipSolids({"inlet", "outlet", "sides"}), f); });
+        const std::string m = errorOf([&]{ checkStl(flipSolids({"inlet", "outlet", "sides"}), describeSurfaceFiles({f})); });
         EXPECT_NE(m.find("is oriented inward: the closed surface of solids inlet, outlet, sides (48 triangles"), std::string::npos) << m;
     }
 }
@@ -694,7 +695,7 @@ TEST(stlGeometry, curvatureSizesGrowAwayFromAFeatureAsGradingAllows)
 TEST(stlReader, touchingShellsAreNamedWithAPoint)
 {
     const std::string room = dataDir + "roomWithDesk.stl";
-    const std::string m = errorOf([&] { checkStl(readStl(room), room); });
+    const std::string m = errorOf([&] { checkStl(readStl(room), describeSurfaceFiles({room})); });
     // Each of the four legs touches the top (at its corners) and the floor
     EXPECT_NE(m.find("roomWithDesk.stl\": 8 pair(s) of closed surfaces touch or overlap"), std::string::npos) << m;
     EXPECT_NE(m.find("the closed surface of solid deskTop (12 triangles between (1 1 0.6999999881) and (3 2 0.75))\n"
@@ -708,7 +709,7 @@ TEST(stlReader, touchingShellsAreNamedWithAPoint)
     EXPECT_NE(m.find("move them apart"), std::string::npos) << m;
 
     const std::string cubes = dataDir + "twoCubesSharingAFace.stl";
-    const std::string c = errorOf([&] { checkStl(readStl(cubes), cubes); });
+    const std::string c = errorOf([&] { checkStl(readStl(cubes), describeSurfaceFiles({cubes})); });
     EXPECT_NE(c.find("is not manifold"), std::string::npos) << c;
     EXPECT_NE(c.find("triangles of solids left, right"), std::string::npos) << c;
     EXPECT_NE(c.find("share faces or edges (touching shells)"), std::string::npos) << c;
@@ -755,7 +756,7 @@ TEST(stlReader, shellsApartPassAndShellsSharingAPointDoNot)
     onFloor.points[5][2] = 0;
     onFloor.points[6][2] = 0;
     onFloor.points[7][2] = 0.5;
-    const std::string m = errorOf([&] { checkStl(onFloor, "onFloor.stl"); });
+    const std::string m = errorOf([&] { checkStl(onFloor, describeSurfaceFiles({"onFloor.stl"})); });
     EXPECT_NE(m.find("1 pair(s) of closed surfaces touch or overlap"), std::string::npos) << m;
     EXPECT_NE(m.find("solid outer (the outer boundary)"), std::string::npos) << m;
     EXPECT_NE(m.find("solid body (4 triangles"), std::string::npos) << m;
@@ -774,6 +775,6 @@ TEST(stlReader, shellsApartPassAndShellsSharingAPointDoNot)
         sharing.triangles.push_back(u);
         sharing.solid.push_back(1);
     }
-    const std::string p = errorOf([&] { checkStl(sharing, "sharing.stl"); });
+    const std::string p = errorOf([&] { checkStl(sharing, describeSurfaceFiles({"sharing.stl"})); });
     EXPECT_NE(p.find("share the point at (0.5 0.5 0.501)"), std::string::npos) << p;
 }

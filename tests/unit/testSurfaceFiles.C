@@ -1,0 +1,228 @@
+// The geometry's surface files: OpenFOAM's formats through triSurface (OBJ,
+// VTK, gzip-compressed), patch names from groups or the file, and one
+// surface made of several files.
+
+#include "surfaceFiles.H"
+#include "stlGeometry.H"
+#include "testUtilities.H"
+
+#include <gtest/gtest.h>
+
+#include <zlib.h>
+
+#include <array>
+#include <map>
+#include <sstream>
+
+using namespace pmsh;
+using namespace pmsh::test;
+
+namespace
+{
+
+//- The unit cube's corners and its 12 outward triangles, two a side,
+//  sides named by where they are.
+const std::vector<point3> cubePoints
+{
+    {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+    {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}
+};
+const std::vector<std::pair<std::string, std::array<triVerts, 2>>> cubeSides
+{
+    {"zMin", {{{0, 2, 1}, {0, 3, 2}}}},
+    {"zMax", {{{4, 5, 6}, {4, 6, 7}}}},
+    {"yMin", {{{0, 1, 5}, {0, 5, 4}}}},
+    {"yMax", {{{3, 7, 6}, {3, 6, 2}}}},
+    {"xMin", {{{0, 4, 7}, {0, 7, 3}}}},
+    {"xMax", {{{1, 2, 6}, {1, 6, 5}}}}
+};
+
+//- The sides [first, last) as OBJ: each a group, or all without one.
+std::string cubeObj(std::size_t first, std::size_t last, bool groups = true)
+{
+    std::ostringstream os;
+    os.precision(17);
+    os  << "# unit cube\no cube\n";
+    for (const point3& p : cubePoints)
+    {
+        os  << "v " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+    }
+    for (std::size_t s = first; s < last; ++s)
+    {
+        if (groups)
+        {
+            os  << "g " << cubeSides[s].first << '\n';
+        }
+        for (const triVerts& t : cubeSides[s].second)
+        {
+            os  << "f " << t[0] + 1 << ' ' << t[1] + 1 << ' ' << t[2] + 1 << '\n';
+        }
+    }
+    return os.str();
+}
+
+//- The sides [first, last) as ascii STL, a solid each.
+std::string cubeStl(std::size_t first, std::size_t last)
+{
+    std::ostringstream os;
+    os.precision(17);
+    for (std::size_t s = first; s < last; ++s)
+    {
+        os  << "solid " << cubeSides[s].first << '\n';
+        for (const triVerts& t : cubeSides[s].second)
+        {
+            os  << "facet normal 0 0 0\nouter loop\n";
+            for (label v : t)
+            {
+                const point3& p = cubePoints[v];
+                os  << "vertex " << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+            }
+            os  << "endloop\nendfacet\n";
+        }
+        os  << "endsolid " << cubeSides[s].first << '\n';
+    }
+    return os.str();
+}
+
+std::string gzipped(const tempDir& dir, const std::string& name, const std::string& text)
+{
+    const std::string path = dir/name;
+    gzFile out = gzopen(path.c_str(), "wb");
+    EXPECT_TRUE(out != nullptr);
+    EXPECT_EQ(gzwrite(out, text.data(), unsigned(text.size())), int(text.size()));
+    gzclose(out);
+    return path;
+}
+
+//- Triangles as sorted point triples with their patch name: the same for
+//  two surfaces that differ only in the order of points and triangles.
+std::multimap<std::string, std::array<point3, 3>> trianglesByPatch(const stlSurface& s)
+{
+    std::multimap<std::string, std::array<point3, 3>> out;
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        std::array<point3, 3> p;
+        for (int k = 0; k < 3; ++k)
+        {
+            p[k] = s.points[s.triangles[t][k]];
+        }
+        // Rotate the lowest point first, keeping the turn
+        int lo = 0;
+        for (int k = 1; k < 3; ++k)
+        {
+            if (p[k] < p[lo]) lo = k;
+        }
+        std::rotate(p.begin(), p.begin() + lo, p.end());
+        out.emplace(s.solidNames[s.solid[t]], p);
+    }
+    return out;
+}
+
+} // End anonymous namespace
+
+
+TEST(surfaceFiles, anObjFileIsReadAsItsStlTwinWithGroupsAsPatches)
+{
+    const tempDir dir("surfaceFiles");
+    const stlSurface obj = readSurfaceFile(dir.file("cube.obj", cubeObj(0, 6)));
+    const stlSurface stl = readSurfaceFile(dir.file("cube.stl", cubeStl(0, 6)));
+    EXPECT_EQ(obj.points.size(), 8u);
+    EXPECT_EQ(obj.nTriangles(), 12);
+    EXPECT_EQ(trianglesByPatch(obj), trianglesByPatch(stl));
+    EXPECT_NO_THROW(checkStl(obj, "cube.obj"));
+}
+
+
+TEST(surfaceFiles, trianglesOutsideAnyGroupTakeTheFileStem)
+{
+    const tempDir dir("surfaceFiles");
+    const stlSurface s = readSurfaceFile(dir.file("myBody.OBJ", cubeObj(0, 6, false)));
+    EXPECT_EQ(s.solidNames, std::vector<std::string>{"myBody"});
+}
+
+
+TEST(surfaceFiles, aGzippedFileIsReadItselfNotTheUncompressedFileBesideIt)
+{
+    const tempDir dir("surfaceFiles");
+    // body.obj (groups) beside body.obj.gz (none): OpenFOAM's IFstream
+    // would read body.obj for either
+    dir.file("body.obj", cubeObj(0, 6));
+    const std::string gz = gzipped(dir, "body.obj.gz", cubeObj(0, 6, false));
+    EXPECT_EQ(readSurfaceFile(gz).solidNames, std::vector<std::string>{"body"});
+    EXPECT_EQ(surfaceFileType(gz), "obj");
+
+    const std::string stlGz = gzipped(dir, "box.stl.gz", cubeStl(0, 6));
+    EXPECT_EQ(trianglesByPatch(readSurfaceFile(stlGz)),
+              trianglesByPatch(readSurfaceFile(dir.file("box.stl", cubeStl(0, 6)))));
+}
+
+
+TEST(surfaceFiles, aVtkFileIsReadByOpenFoam)
+{
+    const tempDir dir("surfaceFiles");
+    std::ostringstream os;
+    os  << "# vtk DataFile Version 2.0\ncube\nASCII\nDATASET POLYDATA\nPOINTS 8 double\n";
+    for (const point3& p : cubePoints)
+    {
+        os  << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+    }
+    os  << "POLYGONS 12 48\n";
+    for (const auto& side : cubeSides)
+    {
+        for (const triVerts& t : side.second)
+        {
+            os  << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
+        }
+    }
+    const stlSurface s = readSurfaceFile(dir.file("part.vtk", os.str()));
+    EXPECT_EQ(s.nTriangles(), 12);
+    EXPECT_EQ(s.solidNames, std::vector<std::string>{"part"});
+    EXPECT_NO_THROW(checkStl(s, "part.vtk"));
+}
+
+
+TEST(surfaceFiles, aClosedSurfaceInSeveralFilesOfSeveralFormatsIsOneSurface)
+{
+    const tempDir dir("surfaceFiles");
+    const std::vector<std::string> files
+    {
+        dir.file("bottom.stl", cubeStl(0, 2)),
+        dir.file("sides.obj", cubeObj(2, 4)),
+        gzipped(dir, "rest.obj.gz", cubeObj(4, 6))
+    };
+    const stlSurface s = readSurfaceFiles(files);
+    EXPECT_EQ(s.points.size(), 8u) << "the files' points are merged";
+    EXPECT_EQ(trianglesByPatch(s), trianglesByPatch(readStl(dir.file("cube.stl", cubeStl(0, 6)))));
+    EXPECT_NO_THROW(checkStl(s, describeSurfaceFiles(files)));
+    EXPECT_EQ(describeSurfaceFiles(files),
+              "surface files \"" + files[0] + "\", \"" + files[1] + "\" and \"" + files[2] + "\"");
+
+    // Each file alone is open
+    EXPECT_FATAL(stlGeometry({files[1]}), "OBJ file \"" + files[1] + "\" is not closed");
+}
+
+
+TEST(surfaceFiles, twoFilesWithThePatchNameStopNamingBoth)
+{
+    const tempDir dir("surfaceFiles");
+    const std::string a = dir.file("a.stl", cubeStl(0, 3));
+    const std::string b = dir.file("b.obj", cubeObj(2, 6));
+    EXPECT_FATAL(readSurfaceFiles({a, b}),
+                 "Surface files \"" + a + "\" and \"" + b + "\" both have a patch named 'yMin'");
+}
+
+
+TEST(surfaceFiles, unreadableFilesNameTheFileAndTheValidTypes)
+{
+    const tempDir dir("surfaceFiles");
+    const std::string bad = dir.file("bad.obj", "v 0 0 0\nf 1 2 3\n");
+    EXPECT_FATAL(readSurfaceFile(bad), "bad.obj");
+    EXPECT_FATAL(Geometry::New(dir.file("body.step", "ISO-10303-21;")),
+                 "Unknown geometry file type \"" + (dir/"body.step") + "\"");
+    EXPECT_FATAL(Geometry::New(dir.file("body.step", "ISO-10303-21;")), ".obj");
+    EXPECT_FALSE(canReadSurfaceFile("body.step"));
+    EXPECT_TRUE(canReadSurfaceFile("body.VTK.gz"));
+    const std::string geo = dir.file("shape.geo", "algebraic3d\nsolid s = sphere (0, 0, 0; 1);\ntlo s;\n");
+    EXPECT_FATAL(Geometry::New(std::vector<std::string>{geo, dir.file("b.stl", cubeStl(0, 6))}),
+                 "a CSG geometry is one file");
+}
