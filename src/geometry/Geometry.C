@@ -24,7 +24,8 @@ namespace pmsh
 
 std::unique_ptr<pmsh::Geometry> pmsh::Geometry::New
 (
-    const std::vector<std::string>& fileNames
+    const std::vector<std::string>& fileNames,
+    const domainBox& domain
 )
 {
     const char* function = "pmsh::Geometry::New";
@@ -63,12 +64,22 @@ std::unique_ptr<pmsh::Geometry> pmsh::Geometry::New
             function
         );
     }
+    if (!csgFile.empty() && domain.given)
+    {
+        throw FatalError
+        (
+            msg() << "A domain box cannot be given with the Netgen CSG file \""
+                << csgFile << "\": a CSG geometry makes its own domain (box and"
+                << " not body)",
+            function
+        );
+    }
     const word key(csgFile.empty() ? "surface" : "geo");
     if (!extensionConstructorTablePtr_ || !extensionConstructorTablePtr_->found(key))
     {
         throw FatalError("No geometry type '" + key + "' is linked in", function);
     }
-    return (*extensionConstructorTablePtr_)[key](fileNames);
+    return (*extensionConstructorTablePtr_)[key](fileNames, domain);
 }
 
 

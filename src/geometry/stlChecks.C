@@ -558,17 +558,75 @@ void pmsh::checkShellContacts(const stlSurface& s, const std::string& what)
 }
 
 
+pmsh::shellNesting pmsh::nestShells(const stlSurface& s)
+{
+    shellNesting n;
+    label nShells = 0;
+    const std::vector<label> shell = surfaceShells(label(s.points.size()), s.triangles, nShells);
+    n.triangles.resize(nShells);
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        n.triangles[shell[t]].push_back(t);
+    }
+    n.volume6.resize(nShells, 0);
+    n.depth.resize(nShells, 0);
+    n.around.resize(nShells, -1);
+    for (label sh = 0; sh < nShells; ++sh)
+    {
+        // Volume about a point of the shell, for accuracy far from the origin
+        const point3 o = s.points[s.triangles[n.triangles[sh][0]][0]];
+        for (label t : n.triangles[sh])
+        {
+            const triVerts& f = s.triangles[t];
+            n.volume6[sh] += tetVolume6(o, s.points[f[0]], s.points[f[1]], s.points[f[2]]);
+        }
+
+        // Nesting depth: the other shells around this one (shells do not
+        // cross, so any of its points tells)
+        const triVerts& f = s.triangles[n.triangles[sh][0]];
+        const point3 x =
+            (1.0/3.0)*(s.points[f[0]] + s.points[f[1]] + s.points[f[2]]);
+        for (label other = 0; other < nShells; ++other)
+        {
+            if
+            (
+                other != sh
+             && std::abs(windingNumber(s.points, s.triangles, n.triangles[other], x)) > 0.5
+            )
+            {
+                ++n.depth[sh];
+                n.around[sh] = other;
+            }
+        }
+    }
+    return n;
+}
+
+
+void pmsh::orientShellsOutOfTheFluid(stlSurface& s)
+{
+    const shellNesting n = nestShells(s);
+    for (std::size_t sh = 0; sh < n.triangles.size(); ++sh)
+    {
+        // Outward at even depth, inward at odd
+        if ((n.volume6[sh] < 0) != (n.depth[sh] % 2 == 1))
+        {
+            for (label t : n.triangles[sh])
+            {
+                std::swap(s.triangles[t][1], s.triangles[t][2]);
+            }
+        }
+    }
+}
+
+
 void pmsh::checkShellOrientation(const stlSurface& s, const std::string& what)
 {
     const char* function = "pmsh::checkShellOrientation";
 
-    label nShells = 0;
-    const std::vector<label> shell = surfaceShells(label(s.points.size()), s.triangles, nShells);
-    std::vector<std::vector<label>> triangles(nShells);
-    for (label t = 0; t < s.nTriangles(); ++t)
-    {
-        triangles[shell[t]].push_back(t);
-    }
+    const shellNesting n = nestShells(s);
+    const std::vector<std::vector<label>>& triangles = n.triangles;
+    const label nShells = label(triangles.size());
 
     // The solids a shell is made of, for messages
     auto solidsOfShell = [&](label sh) { return solidsOf(s, triangles[sh]); };
@@ -594,14 +652,7 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& what)
 
     for (label sh = 0; sh < nShells; ++sh)
     {
-        // Volume about a point of the shell, for accuracy far from the origin
-        const point3 o = s.points[s.triangles[triangles[sh][0]][0]];
-        double v6 = 0;
-        for (label t : triangles[sh])
-        {
-            const triVerts& f = s.triangles[t];
-            v6 += tetVolume6(o, s.points[f[0]], s.points[f[1]], s.points[f[2]]);
-        }
+        const double v6 = n.volume6[sh];
         if (!(v6 != 0))
         {
             throw FatalError
@@ -612,26 +663,8 @@ void pmsh::checkShellOrientation(const stlSurface& s, const std::string& what)
                 function
             );
         }
-
-        // Nesting depth: the other shells around this one (shells do not
-        // cross, so any of its points tells)
-        const triVerts& f = s.triangles[triangles[sh][0]];
-        const point3 x =
-            (1.0/3.0)*(s.points[f[0]] + s.points[f[1]] + s.points[f[2]]);
-        label depth = 0;
-        std::string around;
-        for (label other = 0; other < nShells; ++other)
-        {
-            if
-            (
-                other != sh
-             && std::abs(windingNumber(s.points, s.triangles, triangles[other], x)) > 0.5
-            )
-            {
-                ++depth;
-                around = solidsOfShell(other);
-            }
-        }
+        const label depth = n.depth[sh];
+        const std::string around = n.around[sh] < 0 ? "" : solidsOfShell(n.around[sh]);
 
         // The fluid lies inside the outermost shell and outside a shell
         // nested in it: normals point out of the fluid

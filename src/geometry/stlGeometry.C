@@ -100,13 +100,21 @@ namespace pmsh
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
 
-pmsh::stlGeometry::stlGeometry(const std::vector<std::string>& fileNames)
+pmsh::stlGeometry::stlGeometry
+(
+    const std::vector<std::string>& fileNames,
+    const domainBox& domain
+)
 :
     what_(describeSurfaceFiles(fileNames)),
     impl_(new impl)
 {
     impl& d = *impl_;
     d.surface = readSurfaceFiles(fileNames);
+    if (domain.given)
+    {
+        putBodiesInDomain(d.surface, domain, what_);
+    }
     checkStl(d.surface, what_);
 
     const stlSurface& s = d.surface;

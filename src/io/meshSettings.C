@@ -147,6 +147,118 @@ std::vector<std::string> readGeometry(const dictionary& d, const std::string& ca
 }
 
 
+//- The domain box (domainBox.H): type box, min < max, patches naming
+//  its sides (xMin, ..., default) with words.
+domainBox readDomain(const dictionary& d, const entry& e, const std::vector<std::string>& files)
+{
+    const std::string owner = "'domain'";
+    const std::vector<std::string> entries{"type", "min", "max", "patches"};
+    std::vector<std::string> sideKeys(domainBox::sides.begin(), domainBox::sides.end());
+    sideKeys.push_back("default");
+    const std::string example =
+        "e.g. domain { type box; min (-5 -4 0); max (15 4 8);"
+        " patches { xMin inlet; xMax outlet; default sides; } }";
+    if (!e.isDict())
+    {
+        check.invalid(d, e, "domain must be a dictionary, " + example);
+    }
+    const dictionary& dd = e.dict();
+    for (const entry& x : dd)
+    {
+        if (!containsWord(entries, x.keyword()))
+        {
+            check.error(d, x)
+                << "Unknown entry '" << x.keyword().c_str() << "' in " << owner.c_str()
+                << '.' << didYouMean(x.keyword(), entries).c_str() << '\n'
+                << "Valid entries are: " << joinedWords(entries).c_str()
+                << Foam::exit(Foam::FatalIOError);
+        }
+    }
+    for (const std::string& f : files)
+    {
+        if (surfaceFileType(f) == "geo")
+        {
+            check.error(d, e)
+                << "Entry 'domain' is for surface files, not the Netgen CSG file \""
+                << f.c_str() << "\": a CSG geometry makes its own domain (box and not"
+                << " body). Remove 'domain'" << Foam::exit(Foam::FatalIOError);
+        }
+    }
+    check.require(dd, "type", owner, "Valid types: box; " + example);
+    const entry* t = foam::findEntry(dd, "type");
+    const Foam::token* tok = singleToken(*t);
+    if (!tok || !foam::isStringType(*tok) || foam::stringToken(*tok) != "box")
+    {
+        check.invalid(dd, *t, "Valid types: box", "", " of " + owner);
+    }
+
+    domainBox box;
+    box.given = true;
+    box.min = check.point(dd, "min", owner);
+    box.max = check.point(dd, "max", owner);
+    for (int k = 0; k < 3; ++k)
+    {
+        if (!(box.min[k] < box.max[k]))
+        {
+            check.invalid
+            (
+                dd, *foam::findEntry(dd, "max"),
+                "Every component of 'max' of " + owner + " must be larger than"
+                " that of 'min'", " (not above min)"
+            );
+        }
+    }
+
+    if (const entry* p = foam::findEntry(dd, "patches"))
+    {
+        if (!p->isDict())
+        {
+            check.invalid(dd, *p, "patches of " + owner + " must be a dictionary, " + example);
+        }
+        std::string deflt;
+        for (const entry& x : p->dict())
+        {
+            const Foam::token* name = singleToken(x);
+            if (!containsWord(sideKeys, x.keyword()))
+            {
+                check.error(p->dict(), x)
+                    << "Unknown side '" << x.keyword().c_str() << "' in patches of "
+                    << owner.c_str() << '.' << didYouMean(x.keyword(), sideKeys).c_str()
+                    << "\nValid sides are: " << joinedWords(sideKeys).c_str()
+                    << Foam::exit(Foam::FatalIOError);
+            }
+            if (!name || !foam::isStringType(*name) || foam::stringToken(*name).empty())
+            {
+                check.invalid(p->dict(), x, "The side's patch name, a word: " + example);
+            }
+            const std::string patch = foam::stringToken(*name);
+            if (x.keyword() == "default")
+            {
+                deflt = patch;
+            }
+            for (std::size_t side = 0; side < domainBox::sides.size(); ++side)
+            {
+                if (x.keyword() == domainBox::sides[side])
+                {
+                    box.sideNames[side] = patch;
+                }
+            }
+        }
+        if (!deflt.empty())
+        {
+            for (std::size_t side = 0; side < domainBox::sides.size(); ++side)
+            {
+                if (!foam::findEntry(p->dict(), domainBox::sides[side]))
+                {
+                    box.sideNames[side] = deflt;
+                }
+            }
+        }
+    }
+    return box;
+}
+
+
 //- A local maxCellSize in sub-dictionary sub (of entry owner): optional
 //  for a patch (0 when absent), required for a region.
 double localSize
@@ -398,7 +510,7 @@ std::vector<std::string> meshSettingsEntries()
         "geometry", "maxCellSize", "grading", "refinementLevels",
         "coarseMesher", "volumeMesher", "optimisationSteps",
         "volumeMesherThreads", "curvatureRefinement", "minCellSize",
-        "coarseTimeLimit", "patches", "refinementRegions"
+        "coarseTimeLimit", "patches", "refinementRegions", "domain"
     };
 }
 
@@ -550,6 +662,11 @@ meshSettings readMeshSettings
     if (const entry* e = foam::findEntry(dict, "refinementRegions"))
     {
         s.refinementRegions = readRegions(dict, *e);
+    }
+
+    if (const entry* e = foam::findEntry(dict, "domain"))
+    {
+        s.domain = readDomain(dict, *e, s.geometryFiles);
     }
 
     return s;

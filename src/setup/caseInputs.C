@@ -36,7 +36,7 @@ pmsh::caseInputs pmsh::readCaseInputs
         {
             inputs.decomposition = decompositionDict(args, comm.size());
         }
-        inputs.geometry = Geometry::New(inputs.settings.geometryFiles);
+        inputs.geometry = Geometry::New(inputs.settings.geometryFiles, inputs.settings.domain);
     });
     return inputs;
 }

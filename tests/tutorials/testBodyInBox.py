@@ -37,6 +37,20 @@ boundaryField
 """
 
 
+def write_obj(path, stl_facets, flip=False):
+    """The facets of an ascii STL solid as a gzipped OBJ group 'body', the
+    same coordinates to the bit (repr round-trips), flipped if asked"""
+    points, faces = {}, []
+    for t in re.findall(r"outer loop\s+(.*?)endloop", stl_facets, re.S):
+        corners = [tuple(float(x) for x in v) for v in re.findall(
+            r"vertex\s+(\S+)\s+(\S+)\s+(\S+)", t)]
+        faces.append([points.setdefault(p, len(points) + 1) for p in corners])
+    with gzip.open(path, "wt") as f:
+        f.write("".join("v %r %r %r\n" % p for p in points))
+        f.write("g body\n" + "".join("f %d %d %d\n" % ((t[0], t[2], t[1]) if flip else tuple(t))
+                                     for t in faces))
+
+
 class bodyInBox(CaseTest):
 
     def body_case(self, geometry, **entries):
@@ -143,6 +157,35 @@ class bodyInBox(CaseTest):
             b = one.polymesh("%s/constant/polyMesh" % rank)
             self.assertEqual(a.points(), b.points(), rank)
             self.assertEqual(a.faces(), b.faces(), rank)
+
+    def split_case(self):
+        """body_case of sphereInBox.stl without it, and its solids
+        (name, STL text of the facets) for a test to write as it likes"""
+        c = self.body_case("sphereInBox.stl")
+        path = os.path.join(c.dir, "constant", "geometry", "sphereInBox.stl")
+        with open(path) as f:
+            solids = re.findall(r"(?ms)^solid (\w+)\n(.*?)endsolid \1", f.read())
+        self.assertEqual([name for name, _ in solids], ["inlet", "outlet", "sides", "body"])
+        os.remove(path)
+        return c, solids
+
+    def test_aCadBodyOfEitherOrientationInTheDictionarysDomainBoxNp2(self):
+        """geometry "body.obj.gz" and domain { type box; ... }: the body as
+        CAD exports it (normals out of the body, into the fluid), no box
+        surface; the mesh of sphereInBox.stl, within 10 % of its cells"""
+        one, reference = self.mesh("sphereInBox.stl", 2)
+        for flip in (True, False):
+            c, solids = self.split_case()
+            write_obj(os.path.join(c.dir, "constant", "geometry", "body.obj.gz"),
+                      solids[3][1], flip=flip)
+            c.set_entry("system/pmshDict", "geometry", '"constant/geometry/body.obj.gz"')
+            c.set_entry("system/pmshDict", "domain",
+                        "{ type box; min (-5 -5 -5); max (5 5 5);"
+                        " patches { xMin inlet; xMax outlet; default sides; } }")
+            _, summary = self.mesh_case(c, 2)
+            ratio = summary["fineCells"] / reference["fineCells"]
+            self.assertGreater(ratio, 0.9, "flip %s" % flip)
+            self.assertLess(ratio, 1.1, "flip %s" % flip)
 
     def test_cadLikeStlWithSharpEdgesAndThinTrianglesNp2(self):
         self.mesh("cylinderInBox.stl", 2)

@@ -537,6 +537,34 @@ TEST_F(meshSettingsTest, geometryTakesAListOfSurfaceFiles)
     EXPECT_HAS(err, "does not exist");
 }
 
+TEST_F(meshSettingsTest, aDomainBoxNamesItsSidesWithADefault)
+{
+    const std::string box = "domain { type box; min (-5 -4 0); max (15 4 8);"
+                            " patches { xMin inlet; xMax outlet; default sides; } }\n";
+    const meshSettings s = read(minimal() + box);
+    EXPECT_TRUE(s.domain.given);
+    EXPECT_EQ(s.domain.min, (point3{-5, -4, 0}));
+    EXPECT_EQ(s.domain.max, (point3{15, 4, 8}));
+    EXPECT_EQ(s.domain.sideNames,
+              (std::array<std::string, 6>{"inlet", "outlet", "sides", "sides", "sides", "sides"}));
+    EXPECT_FALSE(read(minimal()).domain.given);
+    // Without patches each side is named as it is
+    EXPECT_EQ(read(minimal() + "domain { type box; min (0 0 0); max (1 1 1); }\n").domain.sideNames,
+              (std::array<std::string, 6>{"xMin", "xMax", "yMin", "yMax", "zMin", "zMax"}));
+
+    EXPECT_HAS(errorFor(minimal() + "domain { type sphere; min (0 0 0); max (1 1 1); }\n"),
+               "Valid types: box");
+    EXPECT_HAS(errorFor(minimal() + "domain { type box; min (0 0 0); max (1 0 1); }\n"),
+               "Every component of 'max' of 'domain' must be larger than that of 'min'");
+    std::string err = errorFor(minimal() + "domain { type box; min (0 0 0); max (1 1 1);"
+                               " patches { xmin inlet; } }\n");
+    EXPECT_HAS(err, "Unknown side 'xmin' in patches of 'domain'. Did you mean 'xMin'?");
+    EXPECT_HAS(err, "Valid sides are: xMin, xMax, yMin, yMax, zMin, zMax, default");
+    writeFile(dir + "/constant/geometry/shape.geo", "algebraic3d\n");
+    EXPECT_HAS(errorFor(withGeometry("constant/geometry/shape.geo") + box),
+               "Entry 'domain' is for surface files, not the Netgen CSG file");
+}
+
 TEST_F(meshSettingsTest, geometryMustBeAQuotedFileName)
 {
     for (const char* bad : {"constant/geometry/body.stl", "()", "(\"a.stl\" 1)", "1", "\"a.stl\" \"b.stl\""})

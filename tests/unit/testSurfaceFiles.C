@@ -4,6 +4,7 @@
 
 #include "surfaceFiles.H"
 #include "stlGeometry.H"
+#include "domainBox.H"
 #include "testUtilities.H"
 
 #include <gtest/gtest.h>
@@ -225,4 +226,78 @@ TEST(surfaceFiles, unreadableFilesNameTheFileAndTheValidTypes)
     const std::string geo = dir.file("shape.geo", "algebraic3d\nsolid s = sphere (0, 0, 0; 1);\ntlo s;\n");
     EXPECT_FATAL(Geometry::New(std::vector<std::string>{geo, dir.file("b.stl", cubeStl(0, 6))}),
                  "a CSG geometry is one file");
+}
+
+
+// * * * * * * * * * * * * * * * Domain box  * * * * * * * * * * * * * * * //
+
+namespace
+{
+
+domainBox boxAround(double lo, double hi)
+{
+    domainBox box;
+    box.given = true;
+    box.min = {lo, lo, lo};
+    box.max = {hi, hi, hi};
+    box.sideNames = {"inlet", "outlet", "sides", "sides", "sides", "sides"};
+    return box;
+}
+
+double volumeOfSolid(const stlSurface& s, const std::string& name)
+{
+    double v6 = 0;
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        if (s.solidNames[s.solid[t]] == name)
+        {
+            const triVerts& f = s.triangles[t];
+            v6 += tetVolume6({0, 0, 0}, s.points[f[0]], s.points[f[1]], s.points[f[2]]);
+        }
+    }
+    return v6/6;
+}
+
+} // End anonymous namespace
+
+
+TEST(domainBox, aBodyOfEitherOrientationEndsPointingOutOfTheFluid)
+{
+    const tempDir dir("domainBox");
+    stlSurface outward = readSurfaceFile(dir.file("body.obj", cubeObj(0, 6, false)));
+    stlSurface inward = outward;
+    for (triVerts& t : inward.triangles)
+    {
+        std::swap(t[1], t[2]);
+    }
+    for (stlSurface* s : {&outward, &inward})
+    {
+        putBodiesInDomain(*s, boxAround(-1, 2), "OBJ file \"body.obj\"");
+        EXPECT_EQ(s->solidNames, (std::vector<std::string>{"body", "inlet", "outlet", "sides"}));
+        EXPECT_NEAR(volumeOfSolid(*s, "body"), -1, 1e-12) << "into the body";
+        EXPECT_NEAR(volumeOfSolid(*s, "inlet") + volumeOfSolid(*s, "outlet")
+                  + volumeOfSolid(*s, "sides"), 27, 1e-12) << "the box outward";
+        EXPECT_EQ(s->points.size(), 16u);
+        EXPECT_NO_THROW(checkStl(*s, "body.obj"));
+    }
+    EXPECT_EQ(outward.triangles, inward.triangles);
+}
+
+
+TEST(domainBox, aBodyReachingTheBoxOrAPatchOfASideStopsNamingThem)
+{
+    const tempDir dir("domainBox");
+    const stlSurface body = readSurfaceFile(dir.file("cube.obj", cubeObj(0, 6)));
+    stlSurface s = body;
+    EXPECT_FATAL(putBodiesInDomain(s, boxAround(0.5, 2), "OBJ file \"cube.obj\""),
+                 "Solid zMin of OBJ file \"cube.obj\" reaches (0 0 0), on or outside the"
+                 " domain box from (0.5 0.5 0.5) to (2 2 2)");
+    s = body;
+    EXPECT_FATAL(putBodiesInDomain(s, boxAround(0, 2), "OBJ file \"cube.obj\""),
+                 "reaches (0 0 0), on or outside");
+    domainBox named = boxAround(-1, 2);
+    named.sideNames[0] = "xMax";
+    s = body;
+    EXPECT_FATAL(putBodiesInDomain(s, named, "OBJ file \"cube.obj\""),
+                 "The domain box's side xMin is patch 'xMax', which is also a body's patch");
 }

@@ -1,0 +1,105 @@
+/*---------------------------------------------------------------------------*\
+  pmshFoam: the domain box of external flow (see domainBox.H).
+\*---------------------------------------------------------------------------*/
+
+#include "domainBox.H"
+#include "surfaceBuilder.H"
+#include "pmshError.H"
+
+#include <algorithm>
+#include <sstream>
+
+// * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * * //
+
+void pmsh::putBodiesInDomain(stlSurface& s, const domainBox& box, const std::string& what)
+{
+    const char* function = "pmsh::putBodiesInDomain";
+    auto text = [](const point3& p)
+    {
+        std::ostringstream os;
+        os.precision(10);
+        os << '(' << p[0] << ' ' << p[1] << ' ' << p[2] << ')';
+        return os.str();
+    };
+    const std::string boxText = "the domain box from " + text(box.min) + " to " + text(box.max);
+
+    // Every body strictly inside: one reaching a side would touch or cross it
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        for (label v : s.triangles[t])
+        {
+            const point3& p = s.points[v];
+            bool inside = true;
+            for (int k = 0; k < 3; ++k)
+            {
+                inside = inside && box.min[k] < p[k] && p[k] < box.max[k];
+            }
+            if (!inside)
+            {
+                throw FatalError
+                (
+                    msg() << "Solid " << s.solidNames[s.solid[t]] << " of " << what
+                        << " reaches " << text(p) << ", on or outside " << boxText
+                        << ".\nWith a domain every surface is a body in the flow,"
+                        << " inside the box and apart from it: enlarge the box (min,"
+                        << " max of 'domain' in system/pmshDict) or move the body",
+                    function
+                );
+            }
+        }
+    }
+
+    // The sides' patches, none a body's
+    for (std::size_t side = 0; side < box.sideNames.size(); ++side)
+    {
+        const auto same =
+            std::find(s.solidNames.begin(), s.solidNames.end(), box.sideNames[side]);
+        if (same != s.solidNames.end())
+        {
+            throw FatalError
+            (
+                msg() << "The domain box's side " << domainBox::sides[side]
+                    << " is patch '" << box.sideNames[side] << "', which is also a"
+                    << " body's patch in " << what << ".\nName the side otherwise"
+                    << " in 'patches' of 'domain' in system/pmshDict",
+                function
+            );
+        }
+    }
+
+    // Two outward triangles a side
+    surfaceBuilder builder(s, "");
+    auto corner = [&](int i, int j, int k)
+    {
+        return point3{(i ? box.max : box.min)[0], (j ? box.max : box.min)[1],
+                      (k ? box.max : box.min)[2]};
+    };
+    // Each side's corners in order round its outward normal
+    const std::array<std::array<std::array<int, 3>, 4>, 6> quads
+    {{
+        {{{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}},     // xMin
+        {{{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}},     // xMax
+        {{{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}},     // yMin
+        {{{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}}},     // yMax
+        {{{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}},     // zMin
+        {{{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}}      // zMax
+    }};
+    for (std::size_t side = 0; side < quads.size(); ++side)
+    {
+        const label solid = builder.addSolid(box.sideNames[side]);
+        std::array<point3, 4> c;
+        for (int i = 0; i < 4; ++i)
+        {
+            c[i] = corner(quads[side][i][0], quads[side][i][1], quads[side][i][2]);
+        }
+        builder.addTriangle(c[0], c[1], c[2], solid);
+        builder.addTriangle(c[0], c[2], c[3], solid);
+    }
+
+    // The bodies, inside the box now, into themselves (and what nests in
+    // them as the nesting says)
+    orientShellsOutOfTheFluid(s);
+}
+
+
+// ************************************************************************* //
