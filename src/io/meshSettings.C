@@ -204,7 +204,7 @@ domainBox readDomain(const dictionary& d, const entry& e, const std::vector<std:
             (
                 dd, *foam::findEntry(dd, "max"),
                 "Every component of 'max' of " + owner + " must be larger than"
-                " that of 'min'", " (not above min)"
+                " that of 'min'", " (not above min)", " of " + owner
             );
         }
     }

@@ -281,6 +281,26 @@ class cases:
             f.write(text.replace("sphere (0, 0, 0; 1)", "sphere (0, 0, 0; 1"))
         return c, ["sphere.geo", "line %d" % line, "')' expected"]
 
+    # -- surface files of OpenFOAM's formats, and the domain box -----------
+
+    def objWithoutTriangles(self):
+        c = self.case("sphereSTL", geometry='"constant/geometry/body.obj"')
+        with open(self.path(c, "constant/geometry/body.obj"), "w") as f:
+            f.write("# a CAD export that lost its faces\nv 0 0 0\nv 1 0 0\nv 0 1 0\n")
+        return c, ["body.obj", "is empty: it contains no triangles"]
+
+    def bodyReachingTheDomainBox(self):
+        # The tutorial's sphere has radius 1
+        c = self.case("sphereSTL", domain="{ type box; min (-0.5 -5 -5); max (5 5 5); }")
+        return c, ["Solid sphere of STL file", "sphere.stl", "on or outside the domain box from"
+                   " (-0.5 -5 -5) to (5 5 5)", "enlarge the box"]
+
+    def domainWithAZeroSide(self):
+        c = self.case("sphereSTL", domain="{ type box; min (-5 -5 -5); max (5 -5 5); }")
+        return c, ["Entry 'max' of 'domain' is ( 5 -5 5 ) (not above min)",
+                   "Every component of 'max' of 'domain' must be larger than that of 'min'",
+                   self.dict_line(c, "domain")]
+
     # -- STL --------------------------------------------------------------
 
     def emptyStl(self):
@@ -435,6 +455,15 @@ class badInput(BadInputTest, cases):
 
     def test_emptyStl(self):
         self.expect_fatal(*self.emptyStl())
+
+    def test_objWithoutTriangles(self):
+        self.expect_fatal(*self.objWithoutTriangles())
+
+    def test_bodyReachingTheDomainBox(self):
+        self.expect_fatal(*self.bodyReachingTheDomainBox())
+
+    def test_domainWithAZeroSide(self):
+        self.expect_fatal(*self.domainWithAZeroSide())
 
     def test_stlWithoutTriangles(self):
         c, _, _ = self.stl_case(lambda facets: [])
@@ -630,6 +659,12 @@ class badInputParallel(BadInputTest, cases):
 
     def test_emptyStl(self):
         self.expect_fatal(*self.emptyStl(), np=2)
+
+    def test_objWithoutTriangles(self):
+        self.expect_fatal(*self.objWithoutTriangles(), np=2)
+
+    def test_bodyReachingTheDomainBox(self):
+        self.expect_fatal(*self.bodyReachingTheDomainBox(), np=2)
 
     def test_truncatedBinaryStl(self):
         self.expect_fatal(*self.truncatedBinaryStl(), np=2)
