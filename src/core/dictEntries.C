@@ -80,6 +80,45 @@ const Foam::token* pmsh::singleToken(const Foam::entry& e)
 }
 
 
+bool pmsh::stringList
+(
+    const Foam::entry& e,
+    std::vector<std::string>& items,
+    bool oneWithoutParentheses
+)
+{
+    items.clear();
+    if (!e.isStream())
+    {
+        return false;
+    }
+    const Foam::ITstream& is = e.stream();
+    const Foam::label n = is.size();
+    auto punctuation = [&](Foam::label i, char c)
+    {
+        return is[i].isPunctuation() && is[i].pToken() == c;
+    };
+    // "a", or (a b ...), or N(a b ...) as OpenFOAM writes lists
+    const Foam::label open = n >= 1 && is[0].isLabel() ? 1 : 0;
+    const bool list =
+        n >= open + 2 && punctuation(open, Foam::token::BEGIN_LIST)
+     && punctuation(n - 1, Foam::token::END_LIST);
+    if (!list && !(oneWithoutParentheses && n == 1))
+    {
+        return false;
+    }
+    for (Foam::label i = list ? open + 1 : 0; i < (list ? n - 1 : n); ++i)
+    {
+        if (!foam::isStringType(is[i]))
+        {
+            return false;
+        }
+        items.push_back(foam::stringToken(is[i]));
+    }
+    return open == 0 || is[0].labelToken() == Foam::label(items.size());
+}
+
+
 std::string pmsh::validRange(double lo, double hi)
 {
     std::ostringstream os;

@@ -111,10 +111,16 @@ void pmsh::checkPatchCoverage
         {
             // As OpenFOAM matches: name, group (a patch's group is its
             // constraint or wall type), regular expression
+            bool inGroup = false;
+            for (const std::string& group : patch.groups)
+            {
+                inGroup = inGroup || pmsh::foam::found(bf, group);
+            }
             if
             (
                 pmsh::foam::found(bf, patch.name)
              || (patch.type != "patch" && pmsh::foam::found(bf, patch.type))
+             || inGroup
              || pmsh::foam::found(bf, patch.name, true)
             )
             {

@@ -89,26 +89,7 @@ std::vector<std::string> readGeometry(const dictionary& d, const std::string& ca
 
     // A string, or a list of strings in parentheses
     std::vector<std::string> names;
-    bool valid = !e->isDict();
-    if (valid)
-    {
-        Foam::ITstream& is = e->stream();
-        is.rewind();
-        const Foam::label n = is.size();
-        const bool list =
-            n >= 2 && is[0].isPunctuation() && is[0].pToken() == Foam::token::BEGIN_LIST
-         && is[n - 1].isPunctuation() && is[n - 1].pToken() == Foam::token::END_LIST;
-        for (Foam::label i = list ? 1 : 0; i < (list ? n - 1 : n); ++i)
-        {
-            valid = valid && foam::isStringType(is[i]);
-            if (valid)
-            {
-                names.push_back(foam::stringToken(is[i]));
-            }
-        }
-        valid = valid && !names.empty() && (list || names.size() == 1);
-    }
-    if (!valid)
+    if (!stringList(*e, names, true) || names.empty())
     {
         check.invalid
         (
@@ -475,12 +456,27 @@ void checkPatches(const dictionary& d, const entry& patchesEntry)
                     << didYouMean(x.keyword(), entries).c_str() << '\n'
                     << "Valid entries of a patch are: 'type' ("
                     << joinedWords(types).c_str() << "), 'maxCellSize' (the"
-                    << " coarse cell size on the patch) and the prism layers' "
+                    << " coarse cell size on the patch), 'inGroups' (its patch"
+                    << " groups) and the prism layers' "
                     << joinedWords(layerSpecificationEntries()).c_str()
                     << Foam::exit(Foam::FatalIOError);
             }
         }
         localSize(d, p.dict(), "patch '" + p.keyword() + "'");
+        if (const entry* g = foam::findEntry(p.dict(), "inGroups"))
+        {
+            std::vector<std::string> groups;
+            if (!stringList(*g, groups, false))
+            {
+                check.invalid
+                (
+                    d, *g,
+                    "inGroups is a list of patch group names, as OpenFOAM's"
+                    " boundary file has it, e.g. inGroups (motorBikeGroup);",
+                    "", " of patch '" + p.keyword() + "'"
+                );
+            }
+        }
         readLayerSpecification(p.dict(), p.keyword());
         const entry* t = foam::findEntry(p.dict(), "type");
         if (!t)
@@ -523,7 +519,7 @@ std::vector<std::string> meshSettingsPatchTypes()
 
 std::vector<std::string> meshSettingsPatchEntries()
 {
-    std::vector<std::string> entries{"type", "maxCellSize"};
+    std::vector<std::string> entries{"type", "maxCellSize", "inGroups"};
     for (const std::string& e : layerSpecificationEntries())
     {
         entries.push_back(e);

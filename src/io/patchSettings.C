@@ -7,6 +7,7 @@
 \*---------------------------------------------------------------------------*/
 #include "meshSettings.H"
 #include "foamShims.H"
+#include "dictEntries.H"
 
 #include <algorithm>
 #include <cctype>
@@ -80,6 +81,22 @@ bool meshSettings::hasPatchSizes() const
         }
     }
     return false;
+}
+
+
+std::vector<std::string> meshSettings::patchGroups(const std::string& patchName) const
+{
+    // The same entry as patchType's
+    const Foam::entry* e = foam::findEntry(patches, patchName, true);
+    std::vector<std::string> groups;
+    if (e && e->isDict())
+    {
+        if (const Foam::entry* g = foam::findEntry(e->dict(), "inGroups"))
+        {
+            stringList(*g, groups, false);      // checked by readMeshSettings
+        }
+    }
+    return groups;
 }
 
 

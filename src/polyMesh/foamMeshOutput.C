@@ -148,6 +148,13 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
             (
                 p.type, p.name, p.size, p.start, i, mesh_->boundaryMesh()
             ).ptr();
+            for (const std::string& group : p.groups)
+            {
+                if (!patches[i]->inGroups().found(group))
+                {
+                    patches[i]->inGroups().append(word(group));
+                }
+            }
         }
     }
     // Cyclic patches need their geometry (the transform) before anything

@@ -8,6 +8,7 @@ void pmsh::setPatchTypes(CoarseMesh& coarse, const meshSettings& settings)
         const meshSettings::patchTypeChoice choice = settings.choosePatchType(p.name);
         p.type = choice.type;
         p.typeOrigin = choice.origin;
+        p.groups = settings.patchGroups(p.name);
     }
     // The geometry's periodic pairs are cyclic, whatever pmshDict says
     for (const periodicPatchPair& pp : coarse.periodicPatches)

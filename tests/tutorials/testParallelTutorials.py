@@ -10,11 +10,12 @@ Run one test:  python3 testParallelTutorials.py sphere.test_np2
 import filecmp
 import os
 import re
+import shutil
 import sys
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from foamCase import CaseTest, PolyMeshFiles, cells_in_checkmesh_log  # noqa: E402
+from foamCase import CaseTest, PolyMeshFiles, cells_in_checkmesh_log, environment  # noqa: E402
 
 
 def write_list_file(path, cls, obj, items, fmt):
@@ -269,6 +270,43 @@ class parallelRun(ParallelCaseTest):
             self.assertTrue(any("timeVaryingMappedFixedValue" in t for t in texts), written)
             _, log = c.run("simpleFoam", np=np)
             self.assertRegex(log, r"(?m)^End")
+
+    def test_openFoamsMotorBikeFieldsAreWrittenAndSolvedWithoutDecomposePar(self):
+        """OpenFOAM's own motorBike 0/ (0.orig of its simpleFoam tutorial,
+        from the OpenFOAM source the build uses: #include, #includeEtc,
+        $macros, k, omega, nut, and the body's conditions on the patch group
+        motorBikeGroup), its transport, turbulence (kOmegaSST) and fv
+        settings, round a body in a domain box whose sides carry the
+        tutorial's patch names: written by pmshFoam -parallel, solved by
+        simpleFoam -parallel."""
+        motorBike = os.path.join(environment()["WM_PROJECT_DIR"], "tutorials",
+                                 "incompressible", "simpleFoam", "motorBike")
+        c = self.case("sphereSTL", refinementLevels=1, maxCellSize=0.5)
+        shutil.rmtree(os.path.join(c.dir, "0"))
+        shutil.copytree(os.path.join(motorBike, "0.orig"), os.path.join(c.dir, "0"))
+        for f in ("constant/transportProperties", "constant/turbulenceProperties",
+                  "system/fvSchemes", "system/fvSolution"):
+            shutil.copy(os.path.join(motorBike, f), os.path.join(c.dir, f))
+        c.set_entry("system/pmshDict", "domain",
+                    "{ type box; min (-3 -2 -2); max (5 2 2); patches { xMin inlet;"
+                    " xMax outlet; zMin lowerWall; zMax upperWall; default frontAndBack; } }")
+        c.substitute("system/pmshDict", r"(?ms)^patches\s*\{.*?^\}",
+                     "patches\n{\n    \"(inlet|outlet|upperWall|frontAndBack)\" { type patch; }\n"
+                     "    lowerWall { type wall; }\n"
+                     "    sphere { type wall; inGroups (motorBikeGroup); }\n}")
+        c.set_entry("system/controlDict", "endTime", 3)
+        c.set_entry("system/controlDict", "writeInterval", 3)
+        c.run("pmshFoam", np=2)
+        for rank in ("processor0", "processor1"):
+            for field in ("U", "p", "k", "omega", "nut"):
+                self.assertTrue(os.path.isfile(os.path.join(c.dir, rank, "0", field)), field)
+        with open(os.path.join(c.dir, "processor0", "constant", "polyMesh", "boundary")) as f:
+            self.assertRegex(f.read(), r"(?s)sphere\s*\{\s*type\s+wall;\s*inGroups\s+"
+                                       r"\d*\s*\((wall motorBikeGroup|motorBikeGroup wall)\);")
+        with open(os.path.join(c.dir, "processor1", "0", "nut")) as f:
+            self.assertRegex(f.read(), r"(?s)sphere\s*\{\s*type\s+nutkWallFunction;")
+        _, log = c.run("simpleFoam", np=2)
+        self.assertRegex(log, r"(?m)^End")
 
     def test_procAddressingDescribesAValidGlobalMesh(self):
         """Assemble constant/polyMesh from the processor meshes through
