@@ -128,6 +128,35 @@ std::vector<std::string> readGeometry(const dictionary& d, const std::string& ca
 }
 
 
+//- A box's corners min and max of d (owned by owner), every component of
+//  max above min's; context names the entry's owner in the message
+//  (" of 'domain'").
+void readBoxCorners
+(
+    const dictionary& d,
+    const std::string& owner,
+    point3& min,
+    point3& max,
+    const std::string& context = ""
+)
+{
+    min = check.point(d, "min", owner);
+    max = check.point(d, "max", owner);
+    for (int k = 0; k < 3; ++k)
+    {
+        if (!(min[k] < max[k]))
+        {
+            check.invalid
+            (
+                d, *foam::findEntry(d, "max"),
+                "Every component of 'max' of " + owner + " must be larger than"
+                " that of 'min'", " (not above min)", context
+            );
+        }
+    }
+}
+
+
 //- The domain box (domainBox.H): type box, min < max, patches naming
 //  its sides (xMin, ..., default) with words.
 domainBox readDomain(const dictionary& d, const entry& e, const std::vector<std::string>& files)
@@ -175,20 +204,7 @@ domainBox readDomain(const dictionary& d, const entry& e, const std::vector<std:
 
     domainBox box;
     box.given = true;
-    box.min = check.point(dd, "min", owner);
-    box.max = check.point(dd, "max", owner);
-    for (int k = 0; k < 3; ++k)
-    {
-        if (!(box.min[k] < box.max[k]))
-        {
-            check.invalid
-            (
-                dd, *foam::findEntry(dd, "max"),
-                "Every component of 'max' of " + owner + " must be larger than"
-                " that of 'min'", " (not above min)", " of " + owner
-            );
-        }
-    }
+    readBoxCorners(dd, owner, box.min, box.max, " of " + owner);
 
     if (const entry* p = foam::findEntry(dd, "patches"))
     {
@@ -362,21 +378,7 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
         switch (region.type)
         {
             case sizeRegion::shape::box:
-                region.min = check.point(rd, "min", owner);
-                region.max = check.point(rd, "max", owner);
-                for (int k = 0; k < 3; ++k)
-                {
-                    if (!(region.min[k] < region.max[k]))
-                    {
-                        check.invalid
-                        (
-                            rd, *foam::findEntry(rd, "max"),
-                            "Every component of 'max' of " + owner
-                          + " must be larger than that of 'min'",
-                            " (not above min)"
-                        );
-                    }
-                }
+                readBoxCorners(rd, owner, region.min, region.max);
                 break;
             case sizeRegion::shape::sphere:
                 region.centre = check.point(rd, "centre", owner);
