@@ -1,6 +1,8 @@
 """External flow: a body inside a box, from one STL with several closed
-shells (the body's triangles pointing into it, out of the fluid) and from
-CSG (box and not body), meshed serially and on 2 and 4 ranks, judged by
+shells (the body's triangles pointing into it, out of the fluid), from
+several surface files of OpenFOAM's formats, from CAD bodies of either
+orientation in pmshDict's domain box, and from CSG (box and not body),
+meshed serially and on 2 and 4 ranks, judged by
 checkMesh; the patches are the STL solids / CSG bcnames, and summary.json
 reports the points the fold repair left off the geometry.
 
@@ -186,6 +188,45 @@ class bodyInBox(CaseTest):
             ratio = summary["fineCells"] / reference["fineCells"]
             self.assertGreater(ratio, 0.9, "flip %s" % flip)
             self.assertLess(ratio, 1.1, "flip %s" % flip)
+
+    def two_bodies_in_the_domain(self, np):
+        """geometry ("body.obj.gz" "cube.stl") in a domain box: the sphere
+        as CAD exports it and a cube beside it, solid 'cube', each file a
+        body; Mesh OK, the sides' and bodies' patches with their types"""
+        c, solids = self.split_case()
+        geometry = os.path.join(c.dir, "constant", "geometry")
+        write_obj(os.path.join(geometry, "body.obj.gz"), solids[3][1], flip=True)
+        lo, hi = (2.0, 1.0, -0.5), (3.0, 2.0, 0.5)
+        corner = [(lo[0] if i & 1 == 0 else hi[0], lo[1] if i & 2 == 0 else hi[1],
+                   lo[2] if i & 4 == 0 else hi[2]) for i in range(8)]
+        quads = [(0, 2, 6, 4), (1, 5, 7, 3), (0, 4, 5, 1), (2, 3, 7, 6), (0, 1, 3, 2), (4, 6, 7, 5)]
+        with open(os.path.join(geometry, "cube.stl"), "w") as f:
+            f.write("solid cube\n")
+            for a, b, cc, d in quads:      # outward, as CAD exports a solid
+                for t in ((a, b, cc), (a, cc, d)):
+                    f.write("facet normal 0 0 0\nouter loop\n%sendloop\nendfacet\n" % "".join(
+                        "vertex %r %r %r\n" % corner[v] for v in t))
+            f.write("endsolid cube\n")
+        c.set_entry("system/pmshDict", "geometry",
+                    '("constant/geometry/body.obj.gz" "constant/geometry/cube.stl")')
+        c.set_entry("system/pmshDict", "domain",
+                    "{ type box; min (-5 -5 -5); max (5 5 5);"
+                    " patches { xMin inlet; xMax outlet; default sides; } }")
+        c.substitute("system/pmshDict", r"body \{ type wall; \}",
+                     "body { type wall; }\n    cube { type wall; }")
+        for field in ("0/U", "0/p"):
+            c.substitute(field, r"(?m)^(\s*)body(\s*\{[^}]*\})", r"\1body\2\n\1cube\2")
+        self.mesh_case(c, np)
+        boundary = os.path.join(c.dir, "processor0" if np > 1 else "", "constant",
+                                "polyMesh", "boundary")
+        with open(boundary) as f:
+            self.assertRegex(f.read(), r"(?s)\bcube\s*\{\s*type\s+wall;")
+
+    def test_twoCadBodiesOfTwoFormatsInTheDomainBoxSerial(self):
+        self.two_bodies_in_the_domain(1)
+
+    def test_twoCadBodiesOfTwoFormatsInTheDomainBoxNp2(self):
+        self.two_bodies_in_the_domain(2)
 
     def test_cadLikeStlWithSharpEdgesAndThinTrianglesNp2(self):
         self.mesh("cylinderInBox.stl", 2)
