@@ -148,9 +148,15 @@ pmsh::foamRankMesh::foamRankMesh(const Foam::Time& time, tetPolyMesh&& mesh)
             (
                 p.type, p.name, p.size, p.start, i, mesh_->boundaryMesh()
             ).ptr();
+            // (a loop: ESI deprecates findIndex, the Foundation has no found)
             for (const std::string& group : p.groups)
             {
-                if (!patches[i]->inGroups().found(group))
+                bool known = false;
+                for (const word& g : patches[i]->inGroups())
+                {
+                    known = known || g == group;
+                }
+                if (!known)
                 {
                     patches[i]->inGroups().append(word(group));
                 }
