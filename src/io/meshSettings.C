@@ -30,9 +30,8 @@ const char* const where = "pmsh::readMeshSettings";
 const entryChecks check(where);
 
 
-//- What is wrong with geometry file path (given as name), or "".
-std::string geometryFileProblem(const std::string& name, const std::string& path,
-                                const std::string& caseDir)
+//- What is wrong with the geometry file at path, or "".
+std::string geometryFileProblem(const std::string& path, const std::string& caseDir)
 {
     const std::string type = surfaceFileType(path);
     std::error_code ec;
@@ -64,7 +63,6 @@ std::string geometryFileProblem(const std::string& name, const std::string& path
             "the file \"" + path + "\" "
           + (probe ? "is empty" : "cannot be read (check its permissions)");
     }
-    (void)name;
     return "";
 }
 
@@ -104,7 +102,7 @@ std::vector<std::string> readGeometry(const dictionary& d, const std::string& ca
     for (const std::string& name : names)
     {
         const std::string path = casePath(caseDir, name);
-        std::string problem = geometryFileProblem(name, path, caseDir);
+        std::string problem = geometryFileProblem(path, caseDir);
         if (problem.empty() && std::find(paths.begin(), paths.end(), path) != paths.end())
         {
             problem = "it is given twice";
