@@ -7,8 +7,6 @@
 #include "pmshError.H"
 #include "surfaceFiles.H"
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * //
@@ -29,10 +27,7 @@ std::unique_ptr<pmsh::Geometry> pmsh::Geometry::New
 )
 {
     const char* function = "pmsh::Geometry::New";
-    const std::string valid =
-        "Valid geometry files: one Netgen CSG file (.geo), or one or more surface"
-        " files (" + readableSurfaceTypes() + ", any of them gzip-compressed as"
-        " .obj.gz)";
+    const std::string valid = validGeometryFiles();
     if (fileNames.empty())
     {
         throw FatalError("No geometry file given.\n" + valid, function);

@@ -7,21 +7,14 @@
 #include "pmshError.H"
 
 #include <algorithm>
-#include <sstream>
 
 // * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * * //
 
 void pmsh::putBodiesInDomain(stlSurface& s, const domainBox& box, const std::string& what)
 {
     const char* function = "pmsh::putBodiesInDomain";
-    auto text = [](const point3& p)
-    {
-        std::ostringstream os;
-        os.precision(10);
-        os << '(' << p[0] << ' ' << p[1] << ' ' << p[2] << ')';
-        return os.str();
-    };
-    const std::string boxText = "the domain box from " + text(box.min) + " to " + text(box.max);
+    const std::string boxText =
+        "the domain box from " + str(box.min, 10) + " to " + str(box.max, 10);
 
     // Every body strictly inside: one reaching a side would touch or cross it
     for (label t = 0; t < s.nTriangles(); ++t)
@@ -39,7 +32,7 @@ void pmsh::putBodiesInDomain(stlSurface& s, const domainBox& box, const std::str
                 throw FatalError
                 (
                     msg() << "Solid " << s.solidNames[s.solid[t]] << " of " << what
-                        << " reaches " << text(p) << ", on or outside " << boxText
+                        << " reaches " << str(p, 10) << ", on or outside " << boxText
                         << ".\nWith a domain every surface is a body in the flow,"
                         << " inside the box and apart from it: enlarge the box (min,"
                         << " max of 'domain' in system/pmshDict) or move the body",

@@ -59,6 +59,15 @@ std::string pmsh::readableSurfaceTypes()
 }
 
 
+std::string pmsh::validGeometryFiles()
+{
+    return
+        "Valid geometry files are: .geo (Netgen CSG), or surface files "
+      + readableSurfaceTypes() + ", in any letter case and gzip-compressed"
+        " too (.stl.gz, .obj.gz, ...)";
+}
+
+
 pmsh::stlSurface pmsh::readSurfaceFile(const std::string& fileName)
 {
     // STL by pmshFoam's own reader: triSurface's keeps single precision

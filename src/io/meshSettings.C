@@ -30,6 +30,31 @@ const char* const where = "pmsh::readMeshSettings";
 const entryChecks check(where);
 
 
+//- Stop at the first entry of sub (a sub-dictionary of d, of owner) not
+//  among valid: "Unknown entry 'x' in <owner>. Did you mean ...?", then
+//  validText, at the entry's line.
+void rejectUnknownEntries
+(
+    const dictionary& d,
+    const dictionary& sub,
+    const std::vector<std::string>& valid,
+    const std::string& owner,
+    const std::string& validText
+)
+{
+    for (const entry& x : sub)
+    {
+        if (!containsWord(valid, x.keyword()))
+        {
+            check.error(d, x)
+                << "Unknown entry '" << x.keyword().c_str() << "' in " << owner.c_str()
+                << '.' << didYouMean(x.keyword(), valid).c_str() << '\n'
+                << validText.c_str() << Foam::exit(Foam::FatalIOError);
+        }
+    }
+}
+
+
 //- What is wrong with the geometry file at path, or "".
 std::string geometryFileProblem(const std::string& path, const std::string& caseDir)
 {
@@ -41,9 +66,7 @@ std::string geometryFileProblem(const std::string& path, const std::string& case
             (type.empty()
            ? std::string("the file name has no extension")
            : "the file type '." + type + "' is not supported")
-          + "\nValid geometry files are: .geo (Netgen CSG), or surface files "
-          + readableSurfaceTypes() + ", in any letter case and gzip-compressed"
-            " too (.stl.gz, .obj.gz, ...)";
+          + "\n" + validGeometryFiles();
     }
     if (!fs::exists(path, ec))
     {
@@ -171,17 +194,7 @@ domainBox readDomain(const dictionary& d, const entry& e, const std::vector<std:
         check.invalid(d, e, "domain must be a dictionary, " + example);
     }
     const dictionary& dd = e.dict();
-    for (const entry& x : dd)
-    {
-        if (!containsWord(entries, x.keyword()))
-        {
-            check.error(d, x)
-                << "Unknown entry '" << x.keyword().c_str() << "' in " << owner.c_str()
-                << '.' << didYouMean(x.keyword(), entries).c_str() << '\n'
-                << "Valid entries are: " << joinedWords(entries).c_str()
-                << Foam::exit(Foam::FatalIOError);
-        }
-    }
+    rejectUnknownEntries(d, dd, entries, owner, "Valid entries are: " + joinedWords(entries));
     for (const std::string& f : files)
     {
         if (surfaceFileType(f) == "geo")
@@ -360,18 +373,11 @@ std::vector<pmsh::sizeRegion> readRegions(const dictionary& d, const entry& regi
             region.type = sizeRegion::shape::cylinder;
             entries.insert(entries.end(), {"point1", "point2", "radius"});
         }
-        for (const entry& x : rd)
-        {
-            if (!containsWord(entries, x.keyword()))
-            {
-                check.error(d, x)
-                    << "Unknown entry '" << x.keyword().c_str() << "' in "
-                    << owner.c_str() << '.'
-                    << didYouMean(x.keyword(), entries).c_str() << '\n'
-                    << "Valid entries of a " << type.c_str() << " are: "
-                    << joinedWords(entries).c_str() << Foam::exit(Foam::FatalIOError);
-            }
-        }
+        rejectUnknownEntries
+        (
+            d, rd, entries, owner,
+            "Valid entries of a " + type + " are: " + joinedWords(entries)
+        );
 
         switch (region.type)
         {
@@ -445,23 +451,14 @@ void checkPatches(const dictionary& d, const entry& patchesEntry)
               + joinedWords(types)
             );
         }
-        const std::vector<std::string> entries = meshSettingsPatchEntries();
-        for (const entry& x : p.dict())
-        {
-            if (!containsWord(entries, x.keyword()))
-            {
-                check.error(d, x)
-                    << "Unknown entry '" << x.keyword().c_str()
-                    << "' in patch '" << p.keyword().c_str() << "'."
-                    << didYouMean(x.keyword(), entries).c_str() << '\n'
-                    << "Valid entries of a patch are: 'type' ("
-                    << joinedWords(types).c_str() << "), 'maxCellSize' (the"
-                    << " coarse cell size on the patch), 'inGroups' (its patch"
-                    << " groups) and the prism layers' "
-                    << joinedWords(layerSpecificationEntries()).c_str()
-                    << Foam::exit(Foam::FatalIOError);
-            }
-        }
+        rejectUnknownEntries
+        (
+            d, p.dict(), meshSettingsPatchEntries(), "patch '" + p.keyword() + "'",
+            "Valid entries of a patch are: 'type' (" + joinedWords(types) + "),"
+            " 'maxCellSize' (the coarse cell size on the patch), 'inGroups' (its"
+            " patch groups) and the prism layers' "
+          + joinedWords(layerSpecificationEntries())
+        );
         localSize(d, p.dict(), "patch '" + p.keyword() + "'");
         if (const entry* g = foam::findEntry(p.dict(), "inGroups"))
         {
