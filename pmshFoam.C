@@ -248,6 +248,7 @@ static void meshCase
         pmsh::checkPatchCoverage(fieldTemplates, coarse.patches);
         layerSpecs = pmsh::layerSpecsOf(settings, coarse);
     });
+    pmsh::checkFieldTemplates(comm, coarse.patches, fieldTemplates, *output);
     pmsh::fineMeshForecast forecast = pmsh::forecastFineMesh
     (
         comm, coarse, settings, layerSpecs, !pmsh::foam::found(args, "noMemoryCheck")

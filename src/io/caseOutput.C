@@ -75,6 +75,10 @@ pmsh::caseOutput::caseOutput
     (
         foam::newTime(runTime.controlDict(), runTime.rootPath(), caseName)
     );
+    // Made now, not by the first write: a condition's processorN/../
+    // path (linkCaseData) resolves only through an existing directory, and
+    // the fields are tried on the patches before the meshing
+    fs::create_directories(std::string(scratchTime_->path()));
 }
 
 
@@ -134,7 +138,9 @@ void pmsh::caseOutput::commit()
             fs::create_directories(fs::path(previous).parent_path());
             fs::rename(to, previous);
         }
-        if (fs::exists(from))
+        // (the scratch processor case stays empty when the collated
+        // fileHandler writes processors<P>: no output)
+        if (fs::exists(from) && !fs::is_empty(from))
         {
             fs::create_directories(fs::path(to).parent_path());
             fs::rename(from, to);

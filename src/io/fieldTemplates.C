@@ -147,12 +147,15 @@ void pmsh::checkPatchCoverage
 namespace
 {
 
+// Build the field from dict on mesh, as a solver reads it; write it if
+// asked (building alone runs every condition's checks)
 template<class FieldType>
-void writeField
+void buildField
 (
     const pmsh::fieldTemplate& field,
     const Foam::dictionary& dict,
-    const Foam::fvMesh& mesh
+    const Foam::fvMesh& mesh,
+    const bool write
 )
 {
     const FieldType f
@@ -169,13 +172,19 @@ void writeField
         mesh,
         dict
     );
-    f.write();
+    if (write)
+    {
+        f.write();
+    }
 }
 
-} // End anonymous namespace
 
-
-void pmsh::writeProcessorField(const fieldTemplate& field, const Foam::fvMesh& mesh)
+void buildProcessorField
+(
+    const pmsh::fieldTemplate& field,
+    const Foam::fvMesh& mesh,
+    const bool write
+)
 {
     using namespace Foam;
 
@@ -197,24 +206,38 @@ void pmsh::writeProcessorField(const fieldTemplate& field, const Foam::fvMesh& m
 
     if (field.className == volScalarField::typeName)
     {
-        writeField<volScalarField>(field, dict, mesh);
+        buildField<volScalarField>(field, dict, mesh, write);
     }
     else if (field.className == volVectorField::typeName)
     {
-        writeField<volVectorField>(field, dict, mesh);
+        buildField<volVectorField>(field, dict, mesh, write);
     }
     else if (field.className == volSphericalTensorField::typeName)
     {
-        writeField<volSphericalTensorField>(field, dict, mesh);
+        buildField<volSphericalTensorField>(field, dict, mesh, write);
     }
     else if (field.className == volSymmTensorField::typeName)
     {
-        writeField<volSymmTensorField>(field, dict, mesh);
+        buildField<volSymmTensorField>(field, dict, mesh, write);
     }
     else
     {
-        writeField<volTensorField>(field, dict, mesh);
+        buildField<volTensorField>(field, dict, mesh, write);
     }
+}
+
+} // End anonymous namespace
+
+
+void pmsh::writeProcessorField(const fieldTemplate& field, const Foam::fvMesh& mesh)
+{
+    buildProcessorField(field, mesh, true);
+}
+
+
+void pmsh::checkFieldOnPatches(const fieldTemplate& field, const Foam::fvMesh& patchesOnly)
+{
+    buildProcessorField(field, patchesOnly, false);
 }
 
 

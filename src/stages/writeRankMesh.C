@@ -122,3 +122,33 @@ pmsh::writtenMesh pmsh::writeRankMesh
     });
     return written;
 }
+
+
+void pmsh::checkFieldTemplates
+(
+    const Communicator& comm,
+    const std::vector<meshPatch>& physicalPatches,
+    const std::vector<fieldTemplate>& fieldTemplates,
+    const caseOutput& output
+)
+{
+    if (fieldTemplates.empty())
+    {
+        return;
+    }
+    failTogether(comm, [&]
+    {
+        tetPolyMesh patchesOnly;
+        patchesOnly.patches = physicalPatches;
+        for (meshPatch& p : patchesOnly.patches)
+        {
+            p.start = 0;
+            p.size = 0;
+        }
+        const foamRankMesh mesh(output.time(), std::move(patchesOnly));
+        for (const fieldTemplate& field : fieldTemplates)
+        {
+            checkFieldOnPatches(field, mesh());
+        }
+    });
+}

@@ -745,6 +745,26 @@ class badInputParallel(BadInputTest, cases):
                               "Add an entry 'walls { type ...; }'",
                               "file: %s\n" % field], np=2)
 
+    def test_conditionOpenFoamRefusesOnItsPatchStopsBeforeTheFineMesh(self):
+        # slip on sphereDrag's symmetry sides: OpenFOAM refuses it when the
+        # field is built on the mesh. That was stage 7, after all the
+        # meshing; now it is the coarse mesh's patches, before stage 2
+        c = self.case("sphereDrag")
+        field = self.path(c, "0/U")
+        c.substitute("0/U", r"(?m)^    outlet$", "    sides\n    {\n        type slip;\n    }\n    outlet")
+        log = self.expect_fatal(c, ["inconsistent patch and patchField types",
+                                    "patch type symmetry and patchField type slip",
+                                    "file: %s.boundaryField.sides" % field], np=2)
+        self.assertNotIn("Stage 2", log, "found only after the coarse mesh's stage")
+
+    def test_fixedValueWithoutValueStopsBeforeTheFineMesh(self):
+        c = self.case("sphere")
+        field = self.path(c, "0/U")
+        c.substitute("0/U", "type            noSlip;", "type            fixedValue;")
+        log = self.expect_fatal(c, ["Essential entry 'value' missing on patch walls",
+                                    "file: %s.boundaryField.walls" % field], np=2)
+        self.assertNotIn("Stage 2", log, "found only after the coarse mesh's stage")
+
     # -- the decomposition --------------------------------------------------
 
     def test_missingDecomposeParDict(self):

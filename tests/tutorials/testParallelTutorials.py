@@ -308,6 +308,37 @@ class parallelRun(ParallelCaseTest):
         _, log = c.run("simpleFoam", np=2)
         self.assertRegex(log, r"(?m)^End")
 
+    def test_expressionAndUnknownConditionsAreWrittenAsGiven(self):
+        """An expression condition (exprFixedValue, valueExpr as a string)
+        and a condition of a library the solver loads later (unknown here,
+        so OpenFOAM's generic one) are written into every processor
+        directory with their own entries and a value for the new patch
+        (OpenFOAM writes a uniform one as uniform), as decomposePar writes
+        them."""
+        c = self.case("sphere")
+        c.substitute("0/U", "type            noSlip;",
+                     "type            exprFixedValue;\n"
+                     "        valueExpr       \"vector(0, 0, 0.1*pos().x())\";\n"
+                     "        value           uniform (0 0 0);")
+        c.substitute("0/p", "type            zeroGradient;",
+                     "type            aWallFromALibrary;\n"
+                     "        roughness       #{ 1e-5 #};\n"
+                     "        value           uniform 0;")
+        c.run("pmshFoam", np=2)
+        for rank in ("processor0", "processor1"):
+            with open(os.path.join(c.dir, rank, "constant", "polyMesh", "boundary")) as f:
+                nFaces = int(re.search(r"(?s)walls\s*\{[^}]*?nFaces\s+(\d+);", f.read()).group(1))
+            for field, type_, entry in (("U", "exprFixedValue", r'valueExpr\s+"vector\(0, 0, 0.1\*pos\(\).x\(\)\)";'),
+                                        ("p", "aWallFromALibrary", r"roughness\s+#\{\s*1e-5\s*#\};")):
+                with open(os.path.join(c.dir, rank, "0", field)) as f:
+                    text = f.read()
+                walls = re.search(r"(?s)\n    walls\s*\{(.*?)\n    \}", text)
+                self.assertIsNotNone(walls, text[-2000:])
+                self.assertRegex(walls.group(1), r"type\s+%s;" % type_)
+                self.assertRegex(walls.group(1), entry)
+                self.assertRegex(walls.group(1), r"value\s+(uniform |nonuniform List<\w+>\s*%d\s*\()"
+                                 % nFaces)
+
     def test_procAddressingDescribesAValidGlobalMesh(self):
         """Assemble constant/polyMesh from the processor meshes through
         their procAddressing alone; checkMesh must accept it, and
