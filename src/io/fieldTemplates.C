@@ -53,6 +53,8 @@ void requireUniform
         << " pmshFoam makes new cells and faces, so only uniform values"
         << " can be given to them." << Foam::nl
         << "Write it as '" << keyword.c_str() << " uniform <value>;'"
+        << " and, to start from a solution on another mesh, map it onto"
+        << " the new one afterwards (mapFieldsPar)"
         << Foam::exit(Foam::FatalIOError);
 }
 

@@ -715,7 +715,7 @@ class badInputParallel(BadInputTest, cases):
             f.write(text.replace("internalField   uniform (0 0 0);",
                                  "internalField   nonuniform List<vector> 2((0 0 0) (1 0 0));"))
         self.expect_fatal(c, ["Entry 'internalField' is nonuniform",
-                              "'internalField uniform <value>;'",
+                              "'internalField uniform <value>;'", "(mapFieldsPar)",
                               "file: %s at line %d." % (field, line_of(field, "internalField"))],
                           np=2)
 
