@@ -231,6 +231,26 @@ class bodyInBox(CaseTest):
     def test_cadLikeStlWithSharpEdgesAndThinTrianglesNp2(self):
         self.mesh("cylinderInBox.stl", 2)
 
+    def test_tutorialGivesTheSpheresCdFromAnObjBodyInTheDomainBox(self):
+        """tutorials/bodyInBox as shipped: a gzipped OBJ ball in pmshDict's
+        domain box (sides named there), sphereDrag's flow. Its Allrun meshes
+        on 2 ranks (Mesh OK), the box's sides get their names and types,
+        the OBJ group names the wall, and simpleFoam's Cd is within 2 % of
+        the sphere's (+0.9 %)."""
+        c = self.case("bodyInBox")
+        code, out = c.run_allrun(timeout=600)
+        self.assertEqual(code, 0, out)
+        self.assertIn("Mesh OK", out)
+        boundary = dict(c.polymesh("processor0/constant/polyMesh").boundary())
+        for name, kind in (("inlet", "patch"), ("outlet", "patch"),
+                           ("sides", "symmetry"), ("ball", "wall")):
+            self.assertEqual(boundary[name]["type"], kind, name)
+        s = c.summary()
+        self.assertEqual(s["layers"]["ball"]["coverage"], 1)
+        printed = re.search(r"Cd = ([\d.]+)\s+reference 1\.087", out)
+        self.assertIsNotNone(printed, out)
+        self.assertLess(abs(float(printed.group(1)) - 1.087) / 1.087, 0.02, out)
+
     def test_csgSerial(self):
         self.mesh("sphereInBox.geo", 1)
 
