@@ -344,7 +344,7 @@ static void meshCase
     (
         comm, runTime.globalPath(), settings, nCoarseCells, coarse.volumeMesher,
         volume, nFineCells, written.quality, stages, forecast.estimate, repair,
-        layerReport
+        inputs.geometry->wrapReport(), layerReport
     );
 }
 

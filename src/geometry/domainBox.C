@@ -6,6 +6,8 @@
 #include "surfaceBuilder.H"
 #include "pmshError.H"
 
+#include "messageStream.H"
+
 #include <algorithm>
 
 // * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * * //
@@ -92,6 +94,44 @@ void pmsh::putBodiesInDomain(stlSurface& s, const domainBox& box, const std::str
     // The bodies, inside the box now, into themselves (and what nests in
     // them as the nesting says)
     orientShellsOutOfTheFluid(s);
+}
+
+
+pmsh::surfaceWrapReport pmsh::wrapBodies
+(
+    stlSurface& s,
+    const domainBox& box,
+    const std::string& what
+)
+{
+    surfaceWrapReport report;
+    if (box.wrap == "off")
+    {
+        return report;
+    }
+    std::string reason = "wrap on in 'domain'";
+    if (box.wrap == "auto")
+    {
+        try
+        {
+            checkStlTopology(s, what);
+            return report;
+        }
+        catch (const FatalError& e)
+        {
+            // The check's first sentence: what is wrong and an example
+            reason = e.message().substr(0, e.message().find('\n'));
+        }
+    }
+    s = wrapSurface(s, box.wrapSize, box.wrapOffset, report);
+    report.reason = reason;
+    Foam::Info
+        << "    wrapped the bodies: " << reason.c_str() << "\n"
+        << "        CGAL alpha wrap, wrapSize " << box.wrapSize << ", wrapOffset "
+        << box.wrapOffset << ": " << report.nTriangles << " triangles from "
+        << report.nInputTriangles << " in " << report.seconds << " s, at most "
+        << report.maxDistance << " from them\n";
+    return report;
 }
 
 

@@ -54,6 +54,12 @@ std::string solidsOf(const stlSurface& s, const std::vector<label>& triangles)
 }
 
 
+//- Where the surface is a body's, pmshFoam can mend it (domainBox.H).
+const char* wrapAdvice =
+    "A body in a domain box (domain in system/pmshDict: the box round the"
+    " bodies, not in the files) is wrapped instead: a closed surface round"
+    " it (wrap auto, the default there)";
+
 //- What to do about surfaces that touch: Netgen cannot mesh a gap of zero
 //  width, and stops with a message that names no solid.
 const char* touchingAdvice =
@@ -352,6 +358,13 @@ double pmsh::enclosedVolume(const stlSurface& s)
 
 void pmsh::checkStl(const stlSurface& s, const std::string& what)
 {
+    checkStlTopology(s, what);
+    checkShellOrientation(s, what);
+}
+
+
+void pmsh::checkStlTopology(const stlSurface& s, const std::string& what)
+{
     const char* function = "pmsh::checkStl";
     const label nt = s.nTriangles();
 
@@ -439,7 +452,8 @@ void pmsh::checkStl(const stlSurface& s, const std::string& what)
                        " edges (touching shells). " + std::string(touchingAdvice)
                      : std::string(" (closed surfaces sharing faces or edges,"
                        " or a stray triangle)")
-                   ),
+                   )
+                << ". " << wrapAdvice,
             function
         );
     }
@@ -452,7 +466,7 @@ void pmsh::checkStl(const stlSurface& s, const std::string& what)
                 << " edge(s) are used by only one triangle, e.g. the edge "
                 << edge(defects.firstOpen) << ".\nThe surface must enclose a volume: fill"
                 << " the holes (vertices of neighbouring triangles must match"
-                << " exactly)",
+                << " exactly). " << wrapAdvice,
             function
         );
     }
@@ -471,7 +485,6 @@ void pmsh::checkStl(const stlSurface& s, const std::string& what)
     }
 
     checkShellContacts(s, what);
-    checkShellOrientation(s, what);
 }
 
 
@@ -553,7 +566,7 @@ void pmsh::checkShellContacts(const stlSurface& s, const std::string& what)
     {
         message << "\n    ... and " << contacts.size() - shown << " more";
     }
-    message << ".\n" << touchingAdvice;
+    message << ".\n" << touchingAdvice << ". " << wrapAdvice;
     throw FatalError(message, "pmsh::checkShellContacts");
 }
 

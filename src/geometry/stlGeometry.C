@@ -113,6 +113,7 @@ pmsh::stlGeometry::stlGeometry
     d.surface = readSurfaceFiles(fileNames);
     if (domain.given)
     {
+        wrap_ = wrapBodies(d.surface, domain, what_);
         putBodiesInDomain(d.surface, domain, what_);
     }
     checkStl(d.surface, what_);

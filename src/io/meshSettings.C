@@ -183,7 +183,8 @@ void readBoxCorners
 domainBox readDomain(const dictionary& d, const entry& e, const std::vector<std::string>& files)
 {
     const std::string owner = "'domain'";
-    const std::vector<std::string> entries{"type", "min", "max", "patches"};
+    const std::vector<std::string> entries
+    {"type", "min", "max", "patches", "wrap", "wrapSize", "wrapOffset"};
     std::vector<std::string> sideKeys(domainBox::sides.begin(), domainBox::sides.end());
     sideKeys.push_back("default");
     const std::string example =
@@ -216,6 +217,23 @@ domainBox readDomain(const dictionary& d, const entry& e, const std::vector<std:
     domainBox box;
     box.given = true;
     readBoxCorners(dd, owner, box.min, box.max, " of " + owner);
+    box.wrap = check.choice
+    (
+        dd, "wrap", box.wrap,
+        std::vector<std::string>(domainBox::wrapModes.begin(), domainBox::wrapModes.end())
+    );
+    box.wrapSize = check.bounded
+    (
+        dd, "wrapSize", 0, aboveZero, std::numeric_limits<double>::max(), false,
+        "wrapSize of " + owner + " must be a number > 0: no gap narrower than it"
+        " is kept when a body is wrapped (default: the finest cell size asked for)"
+    );
+    box.wrapOffset = check.bounded
+    (
+        dd, "wrapOffset", 0, aboveZero, std::numeric_limits<double>::max(), false,
+        "wrapOffset of " + owner + " must be a number > 0: how far outside the"
+        " body its wrap lies (default wrapSize/30)"
+    );
 
     if (const entry* p = foam::findEntry(dd, "patches"))
     {
@@ -660,12 +678,38 @@ meshSettings readMeshSettings
     if (const entry* e = foam::findEntry(dict, "domain"))
     {
         s.domain = readDomain(dict, *e, s.geometryFiles);
+        if (!(s.domain.wrapSize > 0))
+        {
+            s.domain.wrapSize = s.finestCellSize();
+        }
+        if (!(s.domain.wrapOffset > 0))
+        {
+            s.domain.wrapOffset = s.domain.wrapSize/30;
+        }
     }
 
     return s;
 }
 
 } // End namespace pmsh
+
+
+double pmsh::meshSettings::finestCellSize() const
+{
+    double finest = maxCellSize;
+    for (const Foam::entry& e : patches)
+    {
+        if (e.isDict())
+        {
+            const double h = foam::getOrDefault<double>(e.dict(), "maxCellSize", 0.0);
+            if (h > 0)
+            {
+                finest = std::min(finest, h);
+            }
+        }
+    }
+    return finest/double(1 << refinementLevels);
+}
 
 
 std::string pmsh::meshSettings::geometryText() const

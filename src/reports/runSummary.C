@@ -205,6 +205,7 @@ void writeSummaryJson
     const pmsh::stageLog& stages,
     const pmsh::memoryEstimate& estimate,
     const pmsh::projectionRepairSummary& repair,
+    const pmsh::surfaceWrapReport& wrap,
     const pmsh::layerReport& layers
 )
 {
@@ -233,6 +234,11 @@ void writeSummaryJson
         << "  \"fineCells\": " << nFineCells << ",\n"
         << "  \"pointsOffGeometry\": " << repair.nPointsOff << ",\n"
         << "  \"maxDistanceOffGeometry\": " << repair.maxDistance << ",\n"
+        << "  \"wrap\": {\"wrapped\": " << (wrap.wrapped ? "true" : "false")
+        << ", \"reason\": " << jsonString(wrap.reason) << ", \"size\": " << wrap.size
+        << ", \"offset\": " << wrap.offset << ", \"inputTriangles\": " << wrap.nInputTriangles
+        << ", \"triangles\": " << wrap.nTriangles << ", \"maxDistance\": " << wrap.maxDistance
+        << ", \"seconds\": " << wrap.seconds << "},\n"
         << "  \"meanDistanceOffGeometry\": " << repair.meanDistance << ",\n"
         << "  \"fineCellsPerRank\": " << jsonArray(f.cellsPerRank) << ",\n"
         << "  \"volumeMesherPerRank\": [";
@@ -328,6 +334,7 @@ void pmsh::reportSummary
     const stageLog& stages,
     const memoryEstimate& estimate,
     const projectionRepairSummary& repair,
+    const surfaceWrapReport& wrap,
     const layerReport& layers
 )
 {
@@ -338,7 +345,7 @@ void pmsh::reportSummary
         writeSummaryJson
         (
             caseDir, figures, comm, settings, coarseCells, coarseMesher,
-            nFineCells, quality, stages, estimate, repair, layers
+            nFineCells, quality, stages, estimate, repair, wrap, layers
         );
     }
 }

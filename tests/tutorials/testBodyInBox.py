@@ -222,6 +222,66 @@ class bodyInBox(CaseTest):
         with open(boundary) as f:
             self.assertRegex(f.read(), r"(?s)\bcube\s*\{\s*type\s+wall;")
 
+    def dirty_body(self, boxes, np):
+        """A body of unit-ish boxes (lo, hi, solid, open sides 0..5 =
+        xMin..zMax) in one STL, as a CAD export may have it (open, parts
+        overlapping or sharing an edge), in a domain box with wrap auto:
+        the log says why it was wrapped, Mesh OK, each solid a wall patch
+        and the sides their names; returns (log, summary)."""
+        c, _ = self.split_case()
+        quads = [(0, 4, 6, 2), (1, 3, 7, 5), (0, 1, 5, 4), (2, 6, 7, 3), (0, 2, 3, 1), (4, 5, 7, 6)]
+        solids = []
+        with open(os.path.join(c.dir, "constant", "geometry", "dirty.stl"), "w") as f:
+            for lo, hi, solid, open_sides in boxes:
+                corner = [(lo[0] if i & 1 == 0 else hi[0], lo[1] if i & 2 == 0 else hi[1],
+                           lo[2] if i & 4 == 0 else hi[2]) for i in range(8)]
+                f.write("solid %s\n" % solid)
+                for side, (a, b, cc, d) in enumerate(quads):
+                    if side in open_sides:
+                        continue
+                    for t in ((a, b, cc), (a, cc, d)):
+                        f.write("facet normal 0 0 0\nouter loop\n%sendloop\nendfacet\n" % "".join(
+                            "vertex %r %r %r\n" % corner[v] for v in t))
+                f.write("endsolid %s\n" % solid)
+                solids.append(solid)
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/dirty.stl"')
+        c.set_entry("system/pmshDict", "domain",
+                    "{ type box; min (-5 -5 -5); max (5 5 5);"
+                    " patches { xMin inlet; xMax outlet; default sides; } }")
+        walls = sorted(set(solids))
+        c.substitute("system/pmshDict", r"body \{ type wall; \}",
+                     "\n    ".join("%s { type wall; maxCellSize 0.4; }" % w for w in walls))
+        for field in ("0/U", "0/p"):
+            c.substitute(field, r"(?m)^(\s*)body(\s*\{[^}]*\})",
+                         "\n".join(r"\g<1>%s\g<2>" % w for w in walls))
+        _, log = c.run("pmshFoam", np=np)
+        text = c.check_mesh(np=np)
+        self.assertGreater(cells_in_checkmesh_log(text), 1000)
+        with open(os.path.join(c.dir, "processor0", "constant", "polyMesh", "boundary")) as f:
+            boundary = f.read()
+        for name, kind in [("inlet", "patch"), ("outlet", "patch"), ("sides", "patch")] + \
+                [(w, "wall") for w in walls]:
+            self.assertRegex(boundary, r"(?s)\b%s\s*\{\s*type\s+%s;" % (name, kind))
+        return log, c.summary()
+
+    def test_anOpenBoxIsWrappedAndMeshedNp2(self):
+        log, summary = self.dirty_body([((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5), "body", {5})], 2)
+        self.assertRegex(log, r"wrapped the bodies: STL file \".*dirty.stl\" is not closed")
+        self.assertTrue(summary["wrap"]["wrapped"])
+        self.assertLess(summary["wrap"]["maxDistance"], summary["wrap"]["size"])
+
+    def test_twoOverlappingCubesAreWrappedIntoOneBodyNp2(self):
+        log, summary = self.dirty_body([((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5), "body", ()),
+                                        ((0, 0, 0), (1, 1, 1), "cube", ())], 2)
+        self.assertIn("wrapped the bodies", log)
+        self.assertTrue(summary["wrap"]["wrapped"])
+
+    def test_cubesSharingAnEdgeAreWrappedNp2(self):
+        log, summary = self.dirty_body([((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5), "body", ()),
+                                        ((0.5, 0.5, -0.5), (1.5, 1.5, 0.5), "cube", ())], 2)
+        self.assertRegex(log, r"wrapped the bodies: .* is not manifold")
+        self.assertTrue(summary["wrap"]["wrapped"])
+
     def test_twoCadBodiesOfTwoFormatsInTheDomainBoxSerial(self):
         self.two_bodies_in_the_domain(1)
 

@@ -565,6 +565,28 @@ TEST_F(meshSettingsTest, aDomainBoxNamesItsSidesWithADefault)
                "Entry 'domain' is for surface files, not the Netgen CSG file");
 }
 
+TEST_F(meshSettingsTest, aDomainWrapsDirtyBodiesAtTheFinestCellSizeUnlessToldOtherwise)
+{
+    const std::string box = "domain { type box; min (-5 -4 0); max (15 4 8); ";
+    // maxCellSize 0.1 (minimal()), refinementLevels 2, a patch at 0.04:
+    // the finest cell is 0.01
+    const std::string sized =
+        "refinementLevels 2;\npatches { body { type wall; maxCellSize 0.04; } }\n";
+    const meshSettings s = read(minimal() + sized + box + "}\n");
+    EXPECT_EQ(s.domain.wrap, "auto");
+    EXPECT_DOUBLE_EQ(s.domain.wrapSize, 0.01);
+    EXPECT_DOUBLE_EQ(s.domain.wrapOffset, 0.01/30);
+
+    const meshSettings t = read(minimal() + box + "wrap on; wrapSize 0.1; wrapOffset 0.01; }\n");
+    EXPECT_EQ(t.domain.wrap, "on");
+    EXPECT_DOUBLE_EQ(t.domain.wrapSize, 0.1);
+    EXPECT_DOUBLE_EQ(t.domain.wrapOffset, 0.01);
+    EXPECT_EQ(read(minimal() + box + "wrap off; }\n").domain.wrap, "off");
+
+    EXPECT_HAS(errorFor(minimal() + box + "wrap yes; }\n"), "auto, on, off");
+    EXPECT_HAS(errorFor(minimal() + box + "wrapSize 0; }\n"), "wrapSize of 'domain' must be a number > 0");
+}
+
 TEST_F(meshSettingsTest, geometryMustBeAQuotedFileName)
 {
     for (const char* bad : {"constant/geometry/body.stl", "()", "(\"a.stl\" 1)", "1", "\"a.stl\" \"b.stl\""})
