@@ -130,7 +130,9 @@ pmsh::surfaceWrapReport pmsh::wrapBodies
         << "        CGAL alpha wrap, wrapSize " << box.wrapSize << ", wrapOffset "
         << box.wrapOffset << ": " << report.nTriangles << " triangles from "
         << report.nInputTriangles << " in " << report.seconds << " s, at most "
-        << report.maxDistance << " from them\n";
+        << report.maxDistance << " from them; " << report.nTidied
+        << " moved to a neighbouring patch (islands of the nearest CAD"
+        << " triangle's patches)\n";
     return report;
 }
 

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <vector>
 
@@ -32,6 +33,113 @@ Point cgal(const pmsh::point3& p)
 }
 
 } // End anonymous namespace
+
+
+pmsh::label pmsh::tidyWrapPatches(stlSurface& s, const label smallestIsland)
+{
+    // Each triangle's neighbours across its edges (the wrap is a closed
+    // 2-manifold: two triangles an edge)
+    const label nt = s.nTriangles();
+    std::vector<std::array<label, 3>> across(nt, {-1, -1, -1});
+    {
+        std::map<std::pair<label, label>, std::pair<label, int>> open;
+        for (label t = 0; t < nt; ++t)
+        {
+            for (int k = 0; k < 3; ++k)
+            {
+                const label a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
+                const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+                const auto it = open.find(key);
+                if (it == open.end())
+                {
+                    open.emplace(key, std::make_pair(t, k));
+                }
+                else
+                {
+                    across[t][k] = it->second.first;
+                    across[it->second.first][it->second.second] = t;
+                    open.erase(it);
+                }
+            }
+        }
+    }
+
+    label nChanged = 0;
+    // A triangle two of whose neighbours agree on another patch takes it:
+    // spikes and single triangles go, borders straighten. A few sweeps
+    // only: repeated, they eat into narrow strips from their ends
+    for (int sweep = 0; sweep < 3; ++sweep)
+    {
+        label changed = 0;
+        for (label t = 0; t < nt; ++t)
+        {
+            const std::array<label, 3>& n = across[t];
+            for (int k = 0; k < 3; ++k)
+            {
+                const label a = n[k], b = n[(k + 1) % 3];
+                if
+                (
+                    a >= 0 && b >= 0 && s.solid[a] == s.solid[b]
+                 && s.solid[a] != s.solid[t]
+                )
+                {
+                    s.solid[t] = s.solid[a];
+                    ++changed;
+                    break;
+                }
+            }
+        }
+        nChanged += changed;
+        if (!changed) break;
+    }
+
+    // Islands of fewer than smallestIsland triangles join the patch they
+    // share most edges with
+    std::vector<label> island(nt, -1);
+    std::vector<label> stack;
+    for (label seed = 0; seed < nt; ++seed)
+    {
+        if (island[seed] >= 0) continue;
+        std::vector<label> members{seed};
+        island[seed] = seed;
+        stack.assign(1, seed);
+        std::map<label, label> bordering;
+        while (!stack.empty())
+        {
+            const label t = stack.back();
+            stack.pop_back();
+            for (const label u : across[t])
+            {
+                if (u < 0) continue;
+                if (s.solid[u] != s.solid[seed])
+                {
+                    ++bordering[s.solid[u]];
+                }
+                else if (island[u] < 0)
+                {
+                    island[u] = seed;
+                    members.push_back(u);
+                    stack.push_back(u);
+                }
+            }
+        }
+        if (label(members.size()) < smallestIsland && !bordering.empty())
+        {
+            const auto most = std::max_element
+            (
+                bordering.begin(), bordering.end(),
+                [](const auto& x, const auto& y) { return x.second < y.second; }
+            );
+            for (const label t : members)
+            {
+                s.solid[t] = most->first;
+                island[t] = -2;     // visited; may join a later island
+            }
+            nChanged += label(members.size());
+        }
+    }
+    return nChanged;
+}
 
 
 pmsh::stlSurface pmsh::wrapSurface
@@ -98,6 +206,8 @@ pmsh::stlSurface pmsh::wrapSurface
         const auto nearest = inputTree.closest_point_and_primitive(centre);
         out.solid.push_back(s.solid[std::size_t(nearest.second - input.begin())]);
     }
+
+    report.nTidied = tidyWrapPatches(out, smallestPatchIsland);
 
     // How far the mesh's boundary may lie from the CAD: the wrap's points
     // lie on the offset surface, its triangles' centres further where

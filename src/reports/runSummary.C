@@ -237,7 +237,8 @@ void writeSummaryJson
         << "  \"wrap\": {\"wrapped\": " << (wrap.wrapped ? "true" : "false")
         << ", \"reason\": " << jsonString(wrap.reason) << ", \"size\": " << wrap.size
         << ", \"offset\": " << wrap.offset << ", \"inputTriangles\": " << wrap.nInputTriangles
-        << ", \"triangles\": " << wrap.nTriangles << ", \"maxDistance\": " << wrap.maxDistance
+        << ", \"triangles\": " << wrap.nTriangles << ", \"tidied\": " << wrap.nTidied
+        << ", \"maxDistance\": " << wrap.maxDistance
         << ", \"seconds\": " << wrap.seconds << "},\n"
         << "  \"meanDistanceOffGeometry\": " << repair.meanDistance << ",\n"
         << "  \"fineCellsPerRank\": " << jsonArray(f.cellsPerRank) << ",\n"

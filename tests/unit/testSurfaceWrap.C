@@ -191,3 +191,42 @@ TEST(domainBox, anOpenBodyIsWrappedSayingWhyUnlessWrapIsOff)
     EXPECT_NO_THROW(putBodiesInDomain(s, box, "body.stl"));
     EXPECT_NO_THROW(checkStl(s, "body.stl"));
 }
+
+
+TEST(surfaceWrap, patchIslandsOfAFewTrianglesJoinTheirNeighbourLargeOnesStay)
+{
+    stlSurface s;
+    addBox(s, {0, 0, 0}, {1, 1, 1}, "a");
+    surfaceWrapReport report;
+    stlSurface wrapped = wrapSurface(s, 0.1, 0.005, report);
+    EXPECT_EQ(report.nTidied, 0) << "one patch: nothing to tidy";
+
+    // Half the wrap (x > 0.5) is patch b, and one triangle in each half
+    // takes the other's patch: a spike of one triangle
+    wrapped.solidNames.push_back("b");
+    label inA = -1, inB = -1;
+    for (label t = 0; t < wrapped.nTriangles(); ++t)
+    {
+        const bool b = wrapped.centroid(t)[0] > 0.5;
+        wrapped.solid[t] = b ? 1 : 0;
+        if (!b && wrapped.centroid(t)[0] < 0.1 && inA < 0) inA = t;
+        if (b && wrapped.centroid(t)[0] > 0.9 && inB < 0) inB = t;
+    }
+    ASSERT_GE(inA, 0);
+    ASSERT_GE(inB, 0);
+    const std::vector<label> halves = wrapped.solid;
+    wrapped.solid[inA] = 1;
+    wrapped.solid[inB] = 0;
+
+    const label moved = tidyWrapPatches(wrapped, smallestPatchIsland);
+    EXPECT_GE(moved, 2);
+    EXPECT_EQ(wrapped.solid[inA], 0);
+    EXPECT_EQ(wrapped.solid[inB], 1);
+    // The halves stay, but for their ragged border
+    label differ = 0;
+    for (label t = 0; t < wrapped.nTriangles(); ++t)
+    {
+        differ += wrapped.solid[t] != halves[t];
+    }
+    EXPECT_LT(differ, wrapped.nTriangles()/20);
+}
