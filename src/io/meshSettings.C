@@ -232,7 +232,7 @@ domainBox readDomain(const dictionary& d, const entry& e, const std::vector<std:
     (
         dd, "wrapOffset", 0, aboveZero, std::numeric_limits<double>::max(), false,
         "wrapOffset of " + owner + " must be a number > 0: how far outside the"
-        " body its wrap lies (default wrapSize/30)"
+        " body its wrap lies (default wrapSize/2)"
     );
 
     if (const entry* p = foam::findEntry(dd, "patches"))
@@ -684,7 +684,12 @@ meshSettings readMeshSettings
         }
         if (!(s.domain.wrapOffset > 0))
         {
-            s.domain.wrapOffset = s.domain.wrapSize/30;
+            // Not CGAL's usual alpha/30: a thin part wraps into a slab
+            // 2 offsets thick, whose rims Netgen's coarse surface cannot
+            // follow. OpenFOAM's wigley hull (a half hull, wrapSize
+            // 0.0125): at /30 the coarse surface overlapped itself, at /4
+            // it meshed with 86.8 degrees, at /2 with 56.9
+            s.domain.wrapOffset = s.domain.wrapSize/2;
         }
     }
 

@@ -575,7 +575,7 @@ TEST_F(meshSettingsTest, aDomainWrapsDirtyBodiesAtTheFinestCellSizeUnlessToldOth
     const meshSettings s = read(minimal() + sized + box + "}\n");
     EXPECT_EQ(s.domain.wrap, "auto");
     EXPECT_DOUBLE_EQ(s.domain.wrapSize, 0.01);
-    EXPECT_DOUBLE_EQ(s.domain.wrapOffset, 0.01/30);
+    EXPECT_DOUBLE_EQ(s.domain.wrapOffset, 0.01/2);
 
     const meshSettings t = read(minimal() + box + "wrap on; wrapSize 0.1; wrapOffset 0.01; }\n");
     EXPECT_EQ(t.domain.wrap, "on");

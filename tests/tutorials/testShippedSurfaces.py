@@ -1,0 +1,79 @@
+"""The surfaces OpenFOAM ships (Debian's openfoam-examples,
+examples/resources/geometry), each as a body in pmshDict's domain box,
+meshed on 2 ranks and judged by checkMesh -parallel: clean CAD as it is,
+dirty CAD (wigley's half hull, not manifold) wrapped. Sizes from each
+surface's extent d: maxCellSize d/2, d/20 on the body, r = 1; the box one
+d beyond the body on every side.
+
+Run one test:  python3 testShippedSurfaces.py shippedSurfaces.test_flangeNp2
+"""
+
+import gzip
+import os
+import re
+import shutil
+import sys
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest, cells_in_checkmesh_log  # noqa: E402
+
+SHIPPED = "/usr/share/doc/openfoam-examples/examples/resources/geometry"
+
+
+def extent(path):
+    """The bounding box of an (optionally gzipped) STL or OBJ file"""
+    lo, hi = [1e300]*3, [-1e300]*3
+    with (gzip.open if path.endswith(".gz") else open)(path, "rt", errors="replace") as f:
+        for line in f:
+            t = line.split()
+            if t and t[0] in ("v", "vertex"):
+                x = [float(a) for a in t[1:4]]
+                lo = [min(a, b) for a, b in zip(lo, x)]
+                hi = [max(a, b) for a, b in zip(hi, x)]
+    return lo, hi
+
+
+class shippedSurfaces(CaseTest):
+
+    def mesh_in_a_box(self, surface, wrapped):
+        """Mesh OK on 2 ranks, the box's patch and at least one wall; the
+        log says the body was wrapped exactly when it had to be"""
+        source = os.path.join(SHIPPED, surface)
+        self.assertTrue(os.path.isfile(source), "openfoam-examples is not installed: " + source)
+        lo, hi = extent(source)
+        d = max(h - l for l, h in zip(lo, hi))
+        c = self.case("sphereSTL", maxCellSize=d/2, refinementLevels=1, volumeMesher="hxt")
+        shutil.rmtree(os.path.join(c.dir, "0"))
+        shutil.copy(source, os.path.join(c.dir, "constant", "geometry", surface))
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/%s"' % surface)
+        c.set_entry("system/pmshDict", "domain",
+                    "{ type box; min (%s); max (%s); patches { default farfield; } }"
+                    % (" ".join("%r" % (x - d) for x in lo), " ".join("%r" % (x + d) for x in hi)))
+        c.substitute("system/pmshDict", r"(?ms)^patches\s*\{.*?^\}",
+                     "patches\n{\n    farfield { type patch; }\n"
+                     "    \".*\" { type wall; maxCellSize %r; }\n}" % (d/20))
+        _, log = c.run("pmshFoam", np=2)
+        self.assertEqual("wrapped the bodies" in log, wrapped, log[-3000:])
+        text = c.check_mesh(np=2)
+        self.assertGreater(cells_in_checkmesh_log(text), 10000)
+        with open(os.path.join(c.dir, "processor0", "constant", "polyMesh", "boundary")) as f:
+            boundary = f.read()
+        self.assertRegex(boundary, r"(?s)\bfarfield\s*\{\s*type\s+patch;")
+        self.assertRegex(boundary, r"(?s)\{\s*type\s+wall;")
+
+    def test_bulletNp2(self):
+        self.mesh_in_a_box("bullet.stl.gz", wrapped=False)
+
+    def test_blobNp2(self):
+        self.mesh_in_a_box("blob.stl.gz", wrapped=False)
+
+    def test_flangeNp2(self):
+        self.mesh_in_a_box("flange.stl.gz", wrapped=False)
+
+    def test_wigleysHalfHullIsWrappedNp2(self):
+        self.mesh_in_a_box("wigley-scaled-oriented.stl.gz", wrapped=True)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
