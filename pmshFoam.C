@@ -242,13 +242,12 @@ static void meshCase
     pmsh::logCoarseMesh(coarse);
     pmsh::logLocalSizes(coarse, settings);
     std::map<pmsh::label, pmsh::layerSpecification> layerSpecs;
+    // The patches are known now: the fields must cover them, as OpenFOAM takes them
+    pmsh::checkFieldTemplates(comm, coarse.patches, fieldTemplates, *output);
     pmsh::failTogether(comm, [&]
     {
-        // The patches are known now: every field must cover them all
-        pmsh::checkPatchCoverage(fieldTemplates, coarse.patches);
         layerSpecs = pmsh::layerSpecsOf(settings, coarse);
     });
-    pmsh::checkFieldTemplates(comm, coarse.patches, fieldTemplates, *output);
     pmsh::fineMeshForecast forecast = pmsh::forecastFineMesh
     (
         comm, coarse, settings, layerSpecs, !pmsh::foam::found(args, "noMemoryCheck")

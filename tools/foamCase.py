@@ -309,6 +309,21 @@ class CaseTest(unittest.TestCase):
         self.cases.append(c)
         return c
 
+    def sphere_in_box_allrun(self, tutorial):
+        """A tutorial of flow round the D = 1 ball (sphereDrag, bodyInBox)
+        run by its Allrun: it must succeed with Mesh OK and the box's and
+        ball's patches of their types. Returns (case, Allrun's output)."""
+        c = self.case(tutorial)
+        code, out = c.run_allrun(timeout=600)
+        self.assertEqual(code, 0, out)
+        self.assertIn("Mesh OK", out)
+        boundary = dict(c.polymesh("processor0/constant/polyMesh").boundary())
+        for name, kind in (("inlet", "patch"), ("outlet", "patch"),
+                           ("sides", "symmetry"), ("ball", "wall")):
+            self.assertIn(name, boundary)
+            self.assertEqual(boundary[name]["type"], kind, name)
+        return c, out
+
     def geometry_case(self, geometry, wall_patch=None, **entries):
         """tutorials/sphere meshing tests/data/geometry/<geometry> instead:
         no patches entry (every patch as the geometry names it), and 0/U

@@ -179,8 +179,15 @@ void readBoxCorners
 
 
 //- The domain box (domainBox.H): type box, min < max, patches naming
-//  its sides (xMin, ..., default) with words.
-domainBox readDomain(const dictionary& d, const entry& e, const std::vector<std::string>& files)
+//  its sides (xMin, ..., default) with words, how dirty bodies are
+//  wrapped (by default at the finest cell size).
+domainBox readDomain
+(
+    const dictionary& d,
+    const entry& e,
+    const std::vector<std::string>& files,
+    const double finestCellSize
+)
 {
     const std::string owner = "'domain'";
     const std::vector<std::string> entries
@@ -224,13 +231,18 @@ domainBox readDomain(const dictionary& d, const entry& e, const std::vector<std:
     );
     box.wrapSize = check.bounded
     (
-        dd, "wrapSize", 0, aboveZero, std::numeric_limits<double>::max(), false,
+        dd, "wrapSize", finestCellSize, aboveZero, std::numeric_limits<double>::max(), false,
         "wrapSize of " + owner + " must be a number > 0: no gap narrower than it"
         " is kept when a body is wrapped (default: the finest cell size asked for)"
     );
+    // Not CGAL's usual alpha/30: a thin part wraps into a slab 2 offsets
+    // thick, whose rims Netgen's coarse surface cannot follow. OpenFOAM's
+    // wigley hull (a half hull, wrapSize 0.0125): at /30 the coarse
+    // surface overlapped itself, at /4 it meshed with 86.8 degrees, at /2
+    // with 56.9
     box.wrapOffset = check.bounded
     (
-        dd, "wrapOffset", 0, aboveZero, std::numeric_limits<double>::max(), false,
+        dd, "wrapOffset", box.wrapSize/2, aboveZero, std::numeric_limits<double>::max(), false,
         "wrapOffset of " + owner + " must be a number > 0: how far outside the"
         " body its wrap lies (default wrapSize/2)"
     );
@@ -677,20 +689,7 @@ meshSettings readMeshSettings
 
     if (const entry* e = foam::findEntry(dict, "domain"))
     {
-        s.domain = readDomain(dict, *e, s.geometryFiles);
-        if (!(s.domain.wrapSize > 0))
-        {
-            s.domain.wrapSize = s.finestCellSize();
-        }
-        if (!(s.domain.wrapOffset > 0))
-        {
-            // Not CGAL's usual alpha/30: a thin part wraps into a slab
-            // 2 offsets thick, whose rims Netgen's coarse surface cannot
-            // follow. OpenFOAM's wigley hull (a half hull, wrapSize
-            // 0.0125): at /30 the coarse surface overlapped itself, at /4
-            // it meshed with 86.8 degrees, at /2 with 56.9
-            s.domain.wrapOffset = s.domain.wrapSize/2;
-        }
+        s.domain = readDomain(dict, *e, s.geometryFiles, s.finestCellSize());
     }
 
     return s;

@@ -138,6 +138,7 @@ void pmsh::checkFieldTemplates
     }
     failTogether(comm, [&]
     {
+        checkPatchCoverage(fieldTemplates, physicalPatches);
         tetPolyMesh patchesOnly;
         patchesOnly.patches = physicalPatches;
         for (meshPatch& p : patchesOnly.patches)

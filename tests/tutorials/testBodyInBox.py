@@ -300,14 +300,7 @@ class bodyInBox(CaseTest):
         on 2 ranks (Mesh OK), the box's sides get their names and types,
         the OBJ group names the wall, and simpleFoam's Cd is within 2 % of
         the sphere's (+0.9 %)."""
-        c = self.case("bodyInBox")
-        code, out = c.run_allrun(timeout=600)
-        self.assertEqual(code, 0, out)
-        self.assertIn("Mesh OK", out)
-        boundary = dict(c.polymesh("processor0/constant/polyMesh").boundary())
-        for name, kind in (("inlet", "patch"), ("outlet", "patch"),
-                           ("sides", "symmetry"), ("ball", "wall")):
-            self.assertEqual(boundary[name]["type"], kind, name)
+        c, out = self.sphere_in_box_allrun("bodyInBox")
         s = c.summary()
         self.assertEqual(s["layers"]["ball"]["coverage"], 1)
         printed = re.search(r"Cd = ([\d.]+)\s+reference 1\.087", out)

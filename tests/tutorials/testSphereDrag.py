@@ -46,16 +46,7 @@ class sphereDrag(CaseTest):
         the last one forceCoeffs wrote, within 1 % of the reference
         (+0.2 % with hxt and 3 layers; hxt without layers gives +3.5 %,
         Gauss linear gradients +7 %: both fail this test)."""
-        c = self.case("sphereDrag")
-        code, out = c.run_allrun(timeout=600)
-        self.assertEqual(code, 0, out)
-        self.assertIn("Mesh OK", out)
-
-        boundary = dict(c.polymesh("processor0/constant/polyMesh").boundary())
-        for name, kind in (("inlet", "patch"), ("outlet", "patch"),
-                           ("sides", "symmetry"), ("ball", "wall")):
-            self.assertIn(name, boundary)
-            self.assertEqual(boundary[name]["type"], kind, name)
+        c, out = self.sphere_in_box_allrun("sphereDrag")
         s = c.summary()
         self.assertEqual(s["volumeMesher"], "hxt")
         self.assertEqual(s["layers"]["ball"]["coverage"], 1)

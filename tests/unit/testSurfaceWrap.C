@@ -94,6 +94,34 @@ void expectMeshable
     EXPECT_LE(report.maxDistance, std::max(1.01*offset, bridged));
 }
 
+//- The unit cube (solid a) and box b, which the surface check refuses
+//  (`defect`), wrapped at 0.1 into one meshable body.
+stlSurface twoBoxesWrapped(const point3& bLo, const point3& bHi, const char* defect)
+{
+    stlSurface s;
+    addBox(s, {0, 0, 0}, {1, 1, 1}, "a");
+    addBox(s, bLo, bHi, "b");
+    EXPECT_FATAL(checkStlTopology(s, "two.stl"), defect);
+
+    surfaceWrapReport report;
+    const stlSurface wrapped = wrapSurface(s, 0.1, 0.005, report);
+    expectMeshable(wrapped, report, 0.005, 0.1);   // bridging where they meet
+    EXPECT_EQ(nestShells(wrapped).triangles.size(), 1u) << "one body";
+    return wrapped;
+}
+
+//- A domain box round the unit cube, wrapping at 0.1 (offset 0.005).
+domainBox boxRoundTheUnitCube()
+{
+    domainBox box;
+    box.given = true;
+    box.min = {-1, -1, -1};
+    box.max = {2, 2, 2};
+    box.wrapSize = 0.1;
+    box.wrapOffset = 0.005;
+    return box;
+}
+
 } // End anonymous namespace
 
 
@@ -113,15 +141,8 @@ TEST(surfaceWrap, anOpenBoxBecomesAClosedManifoldBodyWithItsPatch)
 
 TEST(surfaceWrap, twoOverlappingCubesBecomeOneShellKeepingEachOnesPatch)
 {
-    stlSurface s;
-    addBox(s, {0, 0, 0}, {1, 1, 1}, "a");
-    addBox(s, {0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, "b");
-    EXPECT_FATAL(checkStlTopology(s, "cubes.stl"), "cubes.stl");
-
-    surfaceWrapReport report;
-    const stlSurface wrapped = wrapSurface(s, 0.1, 0.005, report);
-    expectMeshable(wrapped, report, 0.005, 0.1);
-    EXPECT_EQ(nestShells(wrapped).triangles.size(), 1u) << "one body";
+    const stlSurface wrapped =
+        twoBoxesWrapped({0.5, 0.5, 0.5}, {1.5, 1.5, 1.5}, "touch or overlap");
     // The union's volume, grown by the offset over its area (10.5)
     EXPECT_NEAR(enclosedVolume(wrapped), 1.875 + 10.5*0.005, 0.02);
     EXPECT_EQ(solidNear(wrapped, {0, 0.25, 0.25}), "a");
@@ -131,15 +152,7 @@ TEST(surfaceWrap, twoOverlappingCubesBecomeOneShellKeepingEachOnesPatch)
 
 TEST(surfaceWrap, cubesSharingAnEdgeAreNotManifoldUntilWrapped)
 {
-    stlSurface s;
-    addBox(s, {0, 0, 0}, {1, 1, 1}, "a");
-    addBox(s, {1, 1, 0}, {2, 2, 1}, "b");
-    EXPECT_FATAL(checkStlTopology(s, "edge.stl"), "is not manifold");
-
-    surfaceWrapReport report;
-    const stlSurface wrapped = wrapSurface(s, 0.1, 0.005, report);
-    expectMeshable(wrapped, report, 0.005, 0.1);
-    EXPECT_EQ(nestShells(wrapped).triangles.size(), 1u) << "joined where they meet";
+    twoBoxesWrapped({1, 1, 0}, {2, 2, 1}, "is not manifold");
 }
 
 
@@ -147,12 +160,7 @@ TEST(domainBox, aCleanBodyIsWrappedOnlyWhenAsked)
 {
     stlSurface clean;
     addBox(clean, {0, 0, 0}, {1, 1, 1}, "body");
-    domainBox box;
-    box.given = true;
-    box.min = {-1, -1, -1};
-    box.max = {2, 2, 2};
-    box.wrapSize = 0.1;
-    box.wrapOffset = 0.005;
+    domainBox box = boxRoundTheUnitCube();
 
     stlSurface s = clean;
     EXPECT_FALSE(wrapBodies(s, box, "body.stl").wrapped) << "wrap auto";
@@ -170,12 +178,7 @@ TEST(domainBox, anOpenBodyIsWrappedSayingWhyUnlessWrapIsOff)
 {
     stlSurface open;
     addBox(open, {0, 0, 0}, {1, 1, 1}, "body", {0});
-    domainBox box;
-    box.given = true;
-    box.min = {-1, -1, -1};
-    box.max = {2, 2, 2};
-    box.wrapSize = 0.1;
-    box.wrapOffset = 0.005;
+    domainBox box = boxRoundTheUnitCube();
 
     box.wrap = "off";
     stlSurface s = open;
