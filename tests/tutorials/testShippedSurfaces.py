@@ -1,7 +1,8 @@
 """The surfaces OpenFOAM ships (Debian's openfoam-examples,
 examples/resources/geometry), each as a body in pmshDict's domain box,
-meshed on 2 ranks and judged by checkMesh -parallel: clean CAD as it is,
-dirty CAD (wigley's half hull, not manifold) wrapped. Sizes from each
+meshed on 2 ranks and judged by checkMesh -parallel: clean CAD as it is
+(bullet, blob, flange, building_wtc2), dirty CAD wrapped (wigley's half
+hull, not manifold; propellerTip and the motorBike's helmet, open). Sizes from each
 surface's extent d: maxCellSize d/2, d/20 on the body, r = 1; the box one
 d beyond the body on every side.
 
@@ -71,8 +72,17 @@ class shippedSurfaces(CaseTest):
     def test_flangeNp2(self):
         self.mesh_in_a_box("flange.stl.gz", wrapped=False)
 
+    def test_buildingNp2(self):
+        self.mesh_in_a_box("building_wtc2.obj.gz", wrapped=False)
+
     def test_wigleysHalfHullIsWrappedNp2(self):
         self.mesh_in_a_box("wigley-scaled-oriented.stl.gz", wrapped=True)
+
+    def test_propellerTipIsWrappedNp2(self):
+        self.mesh_in_a_box("propellerTip.obj.gz", wrapped=True)
+
+    def test_motorBikeHelmetIsWrappedNp2(self):
+        self.mesh_in_a_box("motorBike-passenger-helmet.obj.gz", wrapped=True)
 
 
 if __name__ == "__main__":
