@@ -1,4 +1,5 @@
 #include "surfaceWrap.H"
+#include "matchByPoints.H"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -38,31 +39,26 @@ Point cgal(const pmsh::point3& p)
 pmsh::label pmsh::tidyWrapPatches(stlSurface& s, const label smallestIsland)
 {
     // Each triangle's neighbours across its edges (the wrap is a closed
-    // 2-manifold: two triangles an edge)
+    // 2-manifold: two triangles an edge); edge k of triangle t is 3t + k
     const label nt = s.nTriangles();
     std::vector<std::array<label, 3>> across(nt, {-1, -1, -1});
-    {
-        std::map<std::pair<label, label>, std::pair<label, int>> open;
-        for (label t = 0; t < nt; ++t)
+    forEachSamePointsGroup
+    (
+        s.points.size(), matchId(3*nt),
+        [&](matchId id)
         {
-            for (int k = 0; k < 3; ++k)
+            const triVerts& f = s.triangles[id/3];
+            return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
+        },
+        [&](const matchId* ids, std::size_t n)
+        {
+            if (n == 2)
             {
-                const label a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
-                const auto key = std::make_pair(std::min(a, b), std::max(a, b));
-                const auto it = open.find(key);
-                if (it == open.end())
-                {
-                    open.emplace(key, std::make_pair(t, k));
-                }
-                else
-                {
-                    across[t][k] = it->second.first;
-                    across[it->second.first][it->second.second] = t;
-                    open.erase(it);
-                }
+                across[ids[0]/3][ids[0] % 3] = label(ids[1]/3);
+                across[ids[1]/3][ids[1] % 3] = label(ids[0]/3);
             }
         }
-    }
+    );
 
     label nChanged = 0;
     // A triangle two of whose neighbours agree on another patch takes it:
