@@ -193,6 +193,22 @@ static pmsh::writtenMesh writeStage
 }
 
 
+// Stage 1's title: who makes the coarse surface, and who fills it.
+static std::string coarseStageTitle
+(
+    const pmsh::meshSettings& settings,
+    const pmsh::Geometry& geometry
+)
+{
+    const bool remeshed =
+        geometry.remeshesCoarseSurface(pmsh::coarseParameters(settings, ""));
+    return
+        std::string("Stage 1: coarse mesh (")
+      + (remeshed ? "surface remeshed, " : "Netgen surface, ")
+      + settings.coarseMesher + " volume) of " + settings.geometryText();
+}
+
+
 // The stages of the PMSH method, from the case's inputs to the written
 // mesh and the summary. A failure stops every rank together
 // (pmsh::collectiveFailure). caseTime is left to the caller.
@@ -230,8 +246,7 @@ static void meshCase
     stages.begin
     (
         "coarse",
-        "Stage 1: coarse mesh (Netgen surface, " + settings.coarseMesher
-      + " volume) of " + settings.geometryText()
+        coarseStageTitle(settings, *inputs.geometry)
     );
     pmsh::CoarseMesh coarse = pmsh::generateCoarseMesh
     (

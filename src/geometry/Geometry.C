@@ -127,4 +127,15 @@ pmsh::CoarseMesh pmsh::Geometry::localSizedMesh
 }
 
 
+pmsh::CoarseMesh pmsh::Geometry::remeshedSurface(const coarseMeshParameters&) const
+{
+    throw FatalError
+    (
+        "coarseSurface remesh is for surface files: Netgen makes the coarse"
+        " surface of a CSG geometry",
+        "pmsh::Geometry::remeshedSurface"
+    );
+}
+
+
 // ************************************************************************* //

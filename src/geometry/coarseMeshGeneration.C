@@ -57,11 +57,12 @@ private:
 };
 
 
-//- The master's coarse mesh: Netgen's, or Netgen's surface filled by
-//  parameters.mesher (with the fallbacks of stage 4, on every core).
+//- The master's coarse mesh: Netgen's, or the coarse surface (Netgen's
+//  or remeshed) filled by parameters.mesher (with the fallbacks of stage
+//  4, on every core).
 CoarseMesh meshOnMaster(const Geometry& geometry, const coarseMeshParameters& parameters)
 {
-    if (parameters.mesher == "netgen")
+    if (parameters.mesher == "netgen" && !geometry.remeshesCoarseSurface(parameters))
     {
         CoarseMesh coarse = geometry.coarseMesh(parameters);
         coarse.volumeMesher = "netgen";

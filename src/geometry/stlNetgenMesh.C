@@ -173,7 +173,9 @@ std::string coarserAdvice(const coarseMeshParameters& sizes, double attemptLimit
           + toString(sizes.minCellSize) + ") or curvatureRefinement 0 (now "
           + toString(sizes.curvatureRefinement) + ")";
     }
-    return advice + "; or simplify the STL";
+    return
+        advice + "; or set coarseSurface remesh (the surface's own triangles"
+        " remeshed, without Netgen's STL mesher); or simplify the STL";
 }
 
 

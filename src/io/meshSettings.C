@@ -4,6 +4,7 @@
 #include "VolumeMesher.H"
 #include "layerSpecification.H"
 #include "surfaceFiles.H"
+#include "Geometry.H"
 
 #include <algorithm>
 #include <cctype>
@@ -521,6 +522,36 @@ void checkPatches(const dictionary& d, const entry& patchesEntry)
     }
 }
 
+//- Who makes the coarse surface (coarseSurfaceRoutes). Netgen's STL
+//  mesher stalls on alpha wraps (the motorBike: 432 s at its time limit);
+//  the surface's own triangles remeshed take seconds (surfaceRemesh.H).
+std::string readCoarseSurface
+(
+    const dictionary& dict,
+    const std::vector<std::string>& geometryFiles
+)
+{
+    const std::string route = check.choice
+    (
+        dict, "coarseSurface", "auto",
+        std::vector<std::string>(coarseSurfaceRoutes.begin(), coarseSurfaceRoutes.end())
+    );
+    const bool csg = std::any_of
+    (
+        geometryFiles.begin(), geometryFiles.end(),
+        [](const std::string& f) { return surfaceFileType(f) == "geo"; }
+    );
+    if (route == "remesh" && csg)
+    {
+        check.error(dict, "coarseSurface")
+            << "coarseSurface remesh is for surface files (STL, OBJ, ...):"
+            << " Netgen makes the coarse surface of a CSG geometry.\n"
+            << "Valid values here are auto and netgen"
+            << Foam::exit(Foam::FatalIOError);
+    }
+    return route;
+}
+
 } // End anonymous namespace
 
 
@@ -533,7 +564,8 @@ std::vector<std::string> meshSettingsEntries()
         "geometry", "maxCellSize", "grading", "refinementLevels",
         "coarseMesher", "volumeMesher", "optimisationSteps",
         "volumeMesherThreads", "curvatureRefinement", "minCellSize",
-        "coarseTimeLimit", "patches", "refinementRegions", "domain"
+        "coarseTimeLimit", "coarseSurface", "patches", "refinementRegions",
+        "domain"
     };
 }
 
@@ -675,6 +707,8 @@ meshSettings readMeshSettings
         " attempt of Netgen's STL coarse mesh may take (all attempts together"
         " twice that); without the entry, from the surface's size"
     );
+
+    s.coarseSurface = readCoarseSurface(dict, s.geometryFiles);
 
     if (const entry* e = foam::findEntry(dict, "patches"))
     {

@@ -50,6 +50,7 @@ pmsh::coarseMeshParameters pmsh::coarseParameters
     p.curvatureRefinement = settings.curvatureRefinement;
     p.minCellSize = settings.minCellSize;
     p.coarseTimeLimit = settings.coarseTimeLimit;
+    p.coarseSurface = settings.coarseSurface;
     if (settings.hasPatchSizes())
     {
         p.patchMaxCellSize = [settings](const std::string& patch)

@@ -37,9 +37,10 @@ def extent(path):
 
 class shippedSurfaces(CaseTest):
 
-    def mesh_in_a_box(self, surface, wrapped):
+    def mesh_in_a_box(self, surface, wrapped, remeshed=None, entries=()):
         """Mesh OK on 2 ranks, the box's patch and at least one wall; the
-        log says the body was wrapped exactly when it had to be"""
+        log says the body was wrapped exactly when it had to be, and its
+        coarse surface remeshed (by default: exactly when wrapped)"""
         source = os.path.join(SHIPPED, surface)
         self.assertTrue(os.path.isfile(source), "openfoam-examples is not installed: " + source)
         lo, hi = extent(source)
@@ -54,8 +55,11 @@ class shippedSurfaces(CaseTest):
         c.substitute("system/pmshDict", r"(?ms)^patches\s*\{.*?^\}",
                      "patches\n{\n    farfield { type patch; }\n"
                      "    \".*\" { type wall; maxCellSize %r; }\n}" % (d/20))
+        for key, value in entries:
+            c.set_entry("system/pmshDict", key, value)
         _, log = c.run("pmshFoam", np=2)
         self.assertEqual("wrapped the bodies" in log, wrapped, log[-3000:])
+        self.assertEqual("coarse surface remeshed" in log, wrapped if remeshed is None else remeshed)
         text = c.check_mesh(np=2)
         self.assertGreater(cells_in_checkmesh_log(text), 10000)
         with open(os.path.join(c.dir, "processor0", "constant", "polyMesh", "boundary")) as f:
@@ -83,6 +87,15 @@ class shippedSurfaces(CaseTest):
 
     def test_motorBikeHelmetIsWrappedNp2(self):
         self.mesh_in_a_box("motorBike-passenger-helmet.obj.gz", wrapped=True)
+
+    def test_cycloneIsWrappedNp2(self):
+        self.mesh_in_a_box("cyclone.stl.gz", wrapped=True)
+
+    def test_dtcHullRemeshedNp2(self):
+        """The DTC hull at 40 fine cells along its length: Netgen's STL
+        mesher sat at "Surface meshing 99%" on it; remeshed it takes 2 s"""
+        self.mesh_in_a_box("DTC-scaled.stl.gz", wrapped=False, remeshed=True,
+                           entries=[("coarseSurface", "remesh")])
 
 
 if __name__ == "__main__":

@@ -320,8 +320,8 @@ TEST_F(meshSettingsTest, unknownEntryIsAnErrorWithASuggestion)
         err,
         "Valid entries are: geometry, maxCellSize, grading, refinementLevels,"
         " coarseMesher, volumeMesher, optimisationSteps, volumeMesherThreads,"
-        " curvatureRefinement, minCellSize, coarseTimeLimit, patches,"
-        " refinementRegions"
+        " curvatureRefinement, minCellSize, coarseTimeLimit, coarseSurface,"
+        " patches, refinementRegions"
     );
 
     // Nothing close: no guess, still the list
@@ -561,7 +561,7 @@ TEST_F(meshSettingsTest, aDomainBoxNamesItsSidesWithADefault)
     EXPECT_HAS(err, "Unknown side 'xmin' in patches of 'domain'. Did you mean 'xMin'?");
     EXPECT_HAS(err, "Valid sides are: xMin, xMax, yMin, yMax, zMin, zMax, default");
     writeFile(dir + "/constant/geometry/shape.geo", "algebraic3d\n");
-    EXPECT_HAS(errorFor(withGeometry("constant/geometry/shape.geo") + box),
+    EXPECT_HAS(errorFor(withGeometry("constant/geometry/Shape.GEO") + box),
                "Entry 'domain' is for surface files, not the Netgen CSG file");
 }
 
@@ -855,6 +855,24 @@ TEST_F(meshSettingsTest, minCellSizeIsAFloorBelowMaxCellSize)
         EXPECT_HAS(err, "Valid values are numbers 0 < minCellSize <= maxCellSize");
         EXPECT_HAS(err, "STL curvature sizing");
     }
+}
+
+TEST_F(meshSettingsTest, coarseSurfaceIsRemeshedWhereWrappedUnlessToldAndNeverForCsg)
+{
+    EXPECT_EQ(read(minimal()).coarseSurface, "auto");
+    EXPECT_EQ(read(minimal() + "coarseSurface remesh;\n").coarseSurface, "remesh");
+    EXPECT_EQ(read(minimal() + "coarseSurface netgen;\n").coarseSurface, "netgen");
+
+    std::string err = errorFor(minimal() + "coarseSurface cgal;\n");
+    EXPECT_HAS(err, "coarseSurface");
+    EXPECT_HAS(err, "auto");
+    EXPECT_HAS(err, "remesh");
+
+    // A CSG geometry has no triangles to remesh: Netgen makes its surface
+    err = errorFor(withGeometry("constant/geometry/Shape.GEO") + "coarseSurface remesh;\n");
+    EXPECT_HAS(err, "coarseSurface remesh is for surface files");
+    EXPECT_HAS(err, "Valid values here are auto and netgen");
+    EXPECT_EQ(read(withGeometry("constant/geometry/Shape.GEO") + "coarseSurface netgen;\n").coarseSurface, "netgen");
 }
 
 TEST_F(meshSettingsTest, coarseTimeLimitIsAPositiveNumberOfSeconds)

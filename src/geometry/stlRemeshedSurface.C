@@ -1,0 +1,88 @@
+/*---------------------------------------------------------------------------*\
+  pmshFoam: STL geometry: the coarse surface remeshed from the triangles
+  (coarseSurface remesh; surfaceRemesh.H), for a volume mesher to fill.
+\*---------------------------------------------------------------------------*/
+
+#include "stlGeometry.H"
+#include "stlGeometryImpl.H"
+#include "surfaceRemesh.H"
+
+#include <algorithm>
+
+using Foam::Info;
+
+pmsh::CoarseMesh pmsh::stlGeometry::remeshedSurface
+(
+    const coarseMeshParameters& parameters
+) const
+{
+    const impl& d = *impl_;
+    const stlSurface& s = d.surface;
+
+    // Each triangle's coarse size: local sizes only refine, as in Netgen's
+    std::vector<double> patchSize(s.solidNames.size(), parameters.maxCellSize);
+    if (parameters.patchMaxCellSize)
+    {
+        for (std::size_t p = 0; p < patchSize.size(); ++p)
+        {
+            const double h = parameters.patchMaxCellSize(s.solidNames[p]);
+            if (h > 0)
+            {
+                patchSize[p] = std::min(patchSize[p], h);
+            }
+        }
+    }
+    std::vector<double> size(s.nTriangles());
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        size[t] = patchSize[s.solid[t]];
+        for (const sizeRegion& r : parameters.regions)
+        {
+            if (r.size < size[t] && r.contains(s.centroid(t)))
+            {
+                size[t] = r.size;
+            }
+        }
+    }
+
+    // curvatureRefinement cells a radian: chords sag by at most
+    // 1/(8 curvatureRefinement) of their length
+    const double sagFraction =
+        parameters.curvatureRefinement > 0 ? 1/(8*parameters.curvatureRefinement) : 0;
+    const remeshedTriangulation remeshed = remeshSurface
+    (
+        s, d.region, d.featureEdges, size, sagFraction, parameters.minCellSize, what_
+    );
+    Info
+        << "    coarse surface remeshed from the surface's " << s.nTriangles()
+        << " triangles (coarseSurface " << parameters.coarseSurface.c_str()
+        << "): " << label(remeshed.triangles.size()) << " triangles in "
+        << remeshed.seconds << " s";
+    if (remeshed.nRefined)
+    {
+        Info
+            << ", " << remeshed.nRefined << " surface triangles' size halved in "
+            << remeshed.nRounds - 1 << (remeshed.nRounds == 2 ? " round" : " rounds")
+            << " where coarse triangles crossed or sagged (curvatureRefinement "
+            << parameters.curvatureRefinement << ", minCellSize "
+            << parameters.minCellSize << ")";
+    }
+    Info<< '\n';
+
+    CoarseMesh coarse;
+    coarse.points = remeshed.points;
+    coarse.boundary.reserve(remeshed.triangles.size());
+    for (std::size_t t = 0; t < remeshed.triangles.size(); ++t)
+    {
+        const label r = remeshed.region[t];
+        coarse.boundary.push_back({remeshed.triangles[t], d.regionSolid[r], r});
+    }
+    for (const std::string& name : s.solidNames)
+    {
+        coarse.patches.push_back({name});
+    }
+    return coarse;
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,404 @@
+/*---------------------------------------------------------------------------*\
+  pmshFoam: the coarse surface remeshed by CGAL (see surfaceRemesh.H).
+\*---------------------------------------------------------------------------*/
+
+// CGAL's own assertions are for CGAL's debugging: OpenFOAM's wmake builds
+// without NDEBUG, and with them the motorBike's wrap took 20 s, not 15.
+// Results are checked here instead (no crossings; the volume meshers
+// check closure).
+#define CGAL_NDEBUG
+
+#include "surfaceRemesh.H"
+#include "boxTree.H"
+#include "pmshError.H"
+#include "triangleGeometry.H"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iterator>
+#include <map>
+#include <numeric>
+
+namespace pmsh
+{
+namespace
+{
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using Face = Mesh::Face_index;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+//- Relaxation steps of each remeshing (CGAL's default is 1): 3 gave the
+//  motorBike's wrap its coarse surface in 0.4 s, and rounder triangles.
+constexpr unsigned remeshIterations = 3;
+
+//- A coarse edge whose midpoint lies farther than this fraction of its
+//  length from the surface spans a thin part or a sharp bend: stage 3
+//  would project the midpoint across (the DTC hull's bow at 0.31).
+constexpr double foldingSag = 0.25;
+
+
+//- The shells of s (connected by shared points: the surface checks have
+//  made sure shells neither touch nor cross), as lists of triangles.
+std::vector<std::vector<label>> shellsOf(const stlSurface& s)
+{
+    std::vector<label> parent(s.points.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    const auto root = [&](label p)
+    {
+        while (parent[p] != p)
+        {
+            p = parent[p] = parent[parent[p]];
+        }
+        return p;
+    };
+    for (const triVerts& t : s.triangles)
+    {
+        parent[root(t[1])] = root(t[0]);
+        parent[root(t[2])] = root(t[0]);
+    }
+    std::map<label, label> shellOfRoot;
+    std::vector<std::vector<label>> shells;
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        const auto it = shellOfRoot.emplace(root(s.triangles[t][0]), label(shells.size())).first;
+        if (it->second == label(shells.size()))
+        {
+            shells.emplace_back();
+        }
+        shells[it->second].push_back(t);
+    }
+    return shells;
+}
+
+
+//- The coarse triangles of one shell, with each one's region and size.
+struct remeshedShell
+{
+    std::vector<point3> points;
+    std::vector<triVerts> triangles;
+    std::vector<label> region;
+    std::vector<double> size;
+};
+
+
+//- One shell's triangles remeshed at their sizes, from the input itself.
+//  Each (region, size) pair is a patch whose borders CGAL keeps, so every
+//  coarse triangle knows its region and size. One CGAL mesh a shell: CGAL
+//  5.5 takes a face range with no border (a whole shell) for the whole
+//  mesh and projects every other shell's points onto it (remesh_impl.h,
+//  is_on_patch: "if (!has_border_) return true"); a ball in a box lost its
+//  box so.
+remeshedShell remeshShell
+(
+    const stlSurface& s,
+    const std::vector<label>& shell,
+    const std::vector<label>& region,
+    const std::vector<std::array<label, 2>>& featureEdges,
+    const std::vector<double>& size
+)
+{
+    Mesh m;
+    std::map<label, Mesh::Vertex_index> vertex;
+    for (const label t : shell)
+    {
+        for (const label p : s.triangles[t])
+        {
+            if (!vertex.count(p))
+            {
+                const point3& x = s.points[p];
+                vertex[p] = m.add_vertex(Point(x[0], x[1], x[2]));
+            }
+        }
+    }
+
+    std::map<std::pair<label, double>, std::size_t> patchOf;
+    std::vector<double> patchSize;
+    std::vector<label> patchRegion;
+    auto patch = m.add_property_map<Face, std::size_t>("f:patch", 0).first;
+    for (const label t : shell)
+    {
+        const triVerts& f = s.triangles[t];
+        // The surface checks have made it a closed 2-manifold
+        const Face face = m.add_face(vertex[f[0]], vertex[f[1]], vertex[f[2]]);
+        const auto it = patchOf.emplace(std::make_pair(region[t], size[t]), patchSize.size()).first;
+        if (it->second == patchSize.size())
+        {
+            patchSize.push_back(size[t]);
+            patchRegion.push_back(region[t]);
+        }
+        patch[face] = it->second;
+    }
+
+    auto constrained = m.add_property_map<Mesh::Edge_index, bool>("e:feature", false).first;
+    for (const auto& e : featureEdges)
+    {
+        const auto a = vertex.find(e[0]), b = vertex.find(e[1]);
+        if (a == vertex.end() || b == vertex.end()) continue;
+        const auto h = CGAL::halfedge(a->second, b->second, m);
+        if (h.second)
+        {
+            constrained[m.edge(h.first)] = true;
+        }
+    }
+
+    // The finest sizes first: the coarser patches' borders then follow them
+    std::vector<double> sizes(patchSize);
+    std::sort(sizes.begin(), sizes.end());
+    sizes.erase(std::unique(sizes.begin(), sizes.end()), sizes.end());
+    for (const double h : sizes)
+    {
+        std::vector<Face> faces;
+        for (const Face f : m.faces())
+        {
+            if (patchSize[patch[f]] == h)
+            {
+                faces.push_back(f);
+            }
+        }
+        PMP::isotropic_remeshing
+        (
+            faces, h, m,
+            PMP::parameters::number_of_iterations(remeshIterations)
+           .edge_is_constrained_map(constrained)
+           .face_patch_map(patch)
+        );
+    }
+    m.collect_garbage();
+
+    remeshedShell r;
+    for (const auto v : m.vertices())
+    {
+        const Point& x = m.point(v);
+        r.points.push_back({x.x(), x.y(), x.z()});
+    }
+    for (const Face f : m.faces())
+    {
+        triVerts t;
+        int k = 0;
+        for (const auto v : CGAL::vertices_around_face(m.halfedge(f), m))
+        {
+            t[k++] = label(v);
+        }
+        r.triangles.push_back(t);
+        r.region.push_back(patchRegion[patch[f]]);
+        r.size.push_back(patchSize[patch[f]]);
+    }
+    return r;
+}
+
+
+//- The pairs of triangles that cross (CGAL's exact predicates), as
+//  indices into `triangles`.
+std::vector<std::pair<label, label>> crossingPairs
+(
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles
+)
+{
+    Mesh m;
+    for (const point3& x : points)
+    {
+        m.add_vertex(Point(x[0], x[1], x[2]));
+    }
+    for (const triVerts& t : triangles)
+    {
+        m.add_face(Mesh::Vertex_index(t[0]), Mesh::Vertex_index(t[1]), Mesh::Vertex_index(t[2]));
+    }
+    std::vector<std::pair<Face, Face>> crossing;
+    PMP::self_intersections(m.faces(), m, std::back_inserter(crossing));
+    std::vector<std::pair<label, label>> pairs;
+    for (const auto& [a, b] : crossing)
+    {
+        pairs.push_back({label(a), label(b)});
+    }
+    return pairs;
+}
+
+
+//- The input triangles in a tree, to find those round a crossing.
+boxTree triangleTree(const stlSurface& s)
+{
+    std::vector<boxTree::entry> entries(s.nTriangles());
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        boxTree::entry& e = entries[t];
+        e.id = t;
+        e.lo = e.hi = s.points[s.triangles[t][0]];
+        for (const label p : s.triangles[t])
+        {
+            for (int k = 0; k < 3; ++k)
+            {
+                e.lo[k] = std::min(e.lo[k], s.points[p][k]);
+                e.hi[k] = std::max(e.hi[k], s.points[p][k]);
+            }
+        }
+        e.centre = 0.5*(e.lo + e.hi);
+    }
+    return boxTree(std::move(entries));
+}
+
+} // End anonymous namespace
+} // End namespace pmsh
+
+
+pmsh::remeshedTriangulation pmsh::remeshSurface
+(
+    const stlSurface& s,
+    const std::vector<label>& region,
+    const std::vector<std::array<label, 2>>& featureEdges,
+    const std::vector<double>& triangleSize,
+    const double sagFraction,
+    const double minSize,
+    const std::string& what
+)
+{
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<std::vector<label>> shells = shellsOf(s);
+    const boxTree inputTriangles = triangleTree(s);
+
+    std::vector<double> size(triangleSize);
+    std::vector<bool> refined(size.size(), false);
+    remeshedTriangulation result;
+    std::vector<double> coarseSize;
+    label nSagging = 0;
+    for (label round = 1; ; ++round)
+    {
+        result = remeshedTriangulation();
+        coarseSize.clear();
+        for (const std::vector<label>& shell : shells)
+        {
+            const remeshedShell r = remeshShell(s, shell, region, featureEdges, size);
+            const label offset = label(result.points.size());
+            result.points.insert(result.points.end(), r.points.begin(), r.points.end());
+            for (const triVerts& t : r.triangles)
+            {
+                result.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+            }
+            result.region.insert(result.region.end(), r.region.begin(), r.region.end());
+            coarseSize.insert(coarseSize.end(), r.size.begin(), r.size.end());
+        }
+        result.nRounds = round;
+
+        // Where a coarse edge's midpoint lies farther from the surface than
+        // sagFraction of the edge (a curved or thin part), and round every
+        // crossing, the input triangles get half the size
+        std::vector<std::pair<label, double>> tooLarge;     // coarse triangle, new size
+        for (label c = 0; c < label(result.triangles.size()); ++c)
+        {
+            const double h = coarseSize[c];
+            // Curvature sizing stops at minSize; a midpoint a quarter of
+            // its edge away is no curvature but a chord across a thin part
+            // or a sharp bend, where stage 3 would fold the surface: always
+            const double curved = h/2 >= minSize ? sagFraction : 0;
+            const triVerts& t = result.triangles[c];
+            for (int k = 0; k < 3; ++k)
+            {
+                const point3& a = result.points[t[k]];
+                const point3& b = result.points[t[(k + 1) % 3]];
+                const point3 mid = 0.5*(a + b);
+                point3 q;
+                double d2;
+                inputTriangles.nearest
+                (
+                    mid,
+                    [&s](label i, const point3& x, point3& y)
+                    {
+                        const triVerts& f = s.triangles[i];
+                        y = closestOnTriangle(x, s.points[f[0]], s.points[f[1]], s.points[f[2]]);
+                        return magSqr(x - y);
+                    },
+                    q, d2
+                );
+                const double limit = curved > 0 ? std::min(curved, foldingSag) : foldingSag;
+                if (d2 > limit*limit*magSqr(b - a))
+                {
+                    tooLarge.push_back({c, h/2});
+                    ++nSagging;
+                    break;
+                }
+            }
+        }
+        const std::vector<std::pair<label, label>> crossing =
+            crossingPairs(result.points, result.triangles);
+        for (const auto& pair : crossing)
+        {
+            tooLarge.push_back({pair.first, coarseSize[pair.first]/2});
+            tooLarge.push_back({pair.second, coarseSize[pair.second]/2});
+        }
+        if (tooLarge.empty())
+        {
+            break;
+        }
+        if (round == maxRemeshRounds)
+        {
+            if (crossing.empty())
+            {
+                // Sagging edges are only coarser than asked for
+                break;
+            }
+            const triVerts& t = result.triangles[crossing.front().first];
+            const point3 where = (1.0/3.0)
+              * (result.points[t[0]] + result.points[t[1]] + result.points[t[2]]);
+            throw FatalError
+            (
+                msg()
+                    << "The coarse surface remeshed from " << what << " still"
+                    << " crosses itself after " << round << " rounds, each"
+                    << " halving the size round the crossings: "
+                    << crossing.size() << " pair(s) of triangles, one near ("
+                    << where[0] << ' ' << where[1] << ' ' << where[2] << ").\n"
+                    << "The surface has parts thinner than its smallest"
+                    << " triangles there. In system/pmshDict give that patch a"
+                    << " smaller maxCellSize, or set coarseSurface netgen;"
+                    << " where the bodies were wrapped, a larger wrapOffset"
+                    << " makes the thin parts thicker",
+                "pmsh::remeshSurface"
+            );
+        }
+
+        // The input triangles within two sizes of such a coarse triangle
+        for (const auto& [c, h] : tooLarge)
+        {
+            const triVerts& t = result.triangles[c];
+            const point3 centre = (1.0/3.0)
+              * (result.points[t[0]] + result.points[t[1]] + result.points[t[2]]);
+            const double r2 = 16*h*h;
+            inputTriangles.near
+            (
+                centre, r2,
+                [&](label i)
+                {
+                    const triVerts& f = s.triangles[i];
+                    const point3 q = closestOnTriangle
+                    (
+                        centre, s.points[f[0]], s.points[f[1]], s.points[f[2]]
+                    );
+                    if (magSqr(q - centre) <= r2 && size[i] > h)
+                    {
+                        size[i] = h;
+                        refined[i] = true;
+                    }
+                }
+            );
+        }
+    }
+    result.nSagging = nSagging;
+    result.nRefined = label(std::count(refined.begin(), refined.end(), true));
+    result.seconds = std::chrono::duration<double>
+    (
+        std::chrono::steady_clock::now() - start
+    ).count();
+    return result;
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,151 @@
+// The coarse surface remeshed from the triangles (coarseSurface remesh):
+// closed, every point on its face's surface, each patch at its own size,
+// the box's corners kept; and a thin plate, whose two sides cross when
+// remeshed coarser than its thickness, comes out without crossings.
+
+#include "Geometry.H"
+#include "stlGeometry.H"
+#include "testMeshers.H"
+#include "testUtilities.H"
+#include "surfaceRemesh.H"
+#include "triangleCrossings.H"
+#include "geometryTests.H"
+#include "surfaceChecks.H"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+using namespace pmsh;
+using namespace pmsh::test;
+
+namespace
+{
+
+//- Mean edge length of the boundary faces of patch `name`.
+double meanEdge(const CoarseMesh& m, const std::string& name)
+{
+    double sum = 0;
+    label n = 0;
+    for (const coarseBoundaryFace& f : m.boundary)
+    {
+        if (m.patches[f.patch].name != name) continue;
+        for (int k = 0; k < 3; ++k)
+        {
+            sum += std::sqrt(magSqr(m.points[f.v[k]] - m.points[f.v[(k + 1) % 3]]));
+            ++n;
+        }
+    }
+    return n ? sum/n : 0;
+}
+
+
+std::vector<triVerts> triangles(const CoarseMesh& m)
+{
+    std::vector<triVerts> t;
+    for (const coarseBoundaryFace& f : m.boundary) t.push_back(f.v);
+    return t;
+}
+
+} // End anonymous namespace
+
+
+TEST(surfaceRemesh, aSphereInABoxIsRemeshedClosedOnItsSurfacesAtEachPatchsSize)
+{
+    auto g = Geometry::New(dataDir + "sphereInBox.stl");
+    coarseMeshParameters p(2.0);
+    p.coarseSurface = "remesh";
+    p.patchMaxCellSize = [](const std::string& patch) { return patch == "body" ? 0.25 : 0.0; };
+    ASSERT_TRUE(g->remeshesCoarseSurface(p));
+    const CoarseMesh m = g->coarseSurface(p);
+
+    EXPECT_TRUE(m.tets.empty());
+    EXPECT_TRUE(closedAndConsistent(triangles(m)));
+    EXPECT_EQ(patchNames(m), (std::vector<std::string>{"inlet", "outlet", "sides", "body"}));
+
+    // Every point on its face's surface: the box's sides stay flat and
+    // its corners sharp, the ball's points on its facets
+    for (const coarseBoundaryFace& f : m.boundary)
+    {
+        for (const label v : f.v)
+        {
+            const point3 q = g->projectToSurface(m.points[v], f.surface);
+            EXPECT_LT(std::sqrt(magSqr(q - m.points[v])), 1e-9);
+        }
+    }
+    for (const point3& corner : {point3{-5, -5, -5}, point3{5, 5, 5}, point3{-5, 5, -5}})
+    {
+        const bool kept = std::any_of
+        (
+            m.points.begin(), m.points.end(),
+            [&](const point3& x) { return magSqr(x - corner) < 1e-20; }
+        );
+        EXPECT_TRUE(kept);
+    }
+
+    // Each patch at its size (isotropic remeshing keeps edges within
+    // 4/5 and 4/3 of the target)
+    EXPECT_NEAR(meanEdge(m, "body"), 0.25, 0.25*0.3);
+    EXPECT_NEAR(meanEdge(m, "sides"), 2.0, 2.0*0.3);
+
+    const std::vector<label> crossed = crossingTriangles
+    (
+        m.points, triangles(m), std::vector<bool>(m.boundary.size(), true)
+    );
+    EXPECT_EQ(std::count(crossed.begin(), crossed.end(), 0), label(crossed.size()));
+}
+
+
+TEST(surfaceRemesh, aCsgGeometryHasNoTrianglesToRemesh)
+{
+    auto g = Geometry::New(dataDir + "sphere.geo");
+    coarseMeshParameters p(0.5);
+    p.coarseSurface = "remesh";
+    EXPECT_NE(errorOf([&] { g->coarseSurface(p); }).find("for surface files"), std::string::npos);
+}
+
+
+TEST(surfaceRemesh, aThinShellIsRefinedWhereItsSidesWouldCross)
+{
+    // A hollow ball 0.02 thick: at size 0.5 the chords of its outer side
+    // sag by 0.03 (h^2/8R), through its inner side
+    const closedSurface fine = icosphere(5);
+    stlSurface s;
+    s.solidNames = {"shell"};
+    const label n = label(fine.points.size());
+    for (const double r : {1.0, 0.98})
+    {
+        for (const point3& x : fine.points) s.points.push_back(r*x);
+    }
+    std::vector<label> region;
+    for (const triVerts& t : fine.triangles)
+    {
+        s.triangles.push_back(t);
+        region.push_back(0);
+    }
+    for (const triVerts& t : fine.triangles)
+    {
+        // The inner side faces the hollow
+        s.triangles.push_back({t[0] + n, t[2] + n, t[1] + n});
+        region.push_back(1);
+    }
+    s.solid.assign(s.triangles.size(), 0);
+
+    const remeshedTriangulation r = remeshSurface
+    (
+        s, region, {}, std::vector<double>(s.nTriangles(), 0.5), 0, 0, "the hollow ball"
+    );
+    EXPECT_GT(r.nRefined, 0);
+    EXPECT_GT(r.nRounds, 1);
+    EXPECT_TRUE(closedAndConsistent(r.triangles));
+    const std::vector<label> crossed = crossingTriangles
+    (
+        r.points, r.triangles, std::vector<bool>(r.triangles.size(), true)
+    );
+    EXPECT_EQ(std::count(crossed.begin(), crossed.end(), 0), label(crossed.size()));
+
+    // Away from the crossings the size stays: far fewer triangles than
+    // the input's
+    EXPECT_LT(r.triangles.size(), s.triangles.size()/4);
+}
