@@ -200,11 +200,13 @@ static std::string coarseStageTitle
     const pmsh::Geometry& geometry
 )
 {
-    const bool remeshed =
-        geometry.remeshesCoarseSurface(pmsh::coarseParameters(settings, ""));
     return
         std::string("Stage 1: coarse mesh (")
-      + (remeshed ? "surface remeshed, " : "Netgen surface, ")
+      + (
+            geometry.remeshesCoarseSurface(settings.coarseSurface)
+          ? "surface remeshed, "
+          : "Netgen surface, "
+        )
       + settings.coarseMesher + " volume) of " + settings.geometryText();
 }
 

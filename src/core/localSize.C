@@ -108,6 +108,25 @@ pmsh::sizeRegion pmsh::sizeRegion::scaled(double factor) const
 
 // * * * * * * * * * * * * * * * * Sampling  * * * * * * * * * * * * * * * //
 
+double pmsh::regionSizeAt
+(
+    const std::vector<sizeRegion>& regions,
+    const point3& p,
+    double largest
+)
+{
+    double size = largest;
+    for (const sizeRegion& r : regions)
+    {
+        if (r.size < size && r.contains(p))
+        {
+            size = r.size;
+        }
+    }
+    return size;
+}
+
+
 std::size_t pmsh::forEachSample
 (
     const sizeRegion& region,

@@ -32,14 +32,10 @@ std::unique_ptr<pmsh::Geometry> pmsh::Geometry::New
     {
         throw FatalError("No geometry file given.\n" + valid, function);
     }
-    std::string csgFile;
+    const std::string csgFile = csgFileOf(fileNames);
     for (const std::string& f : fileNames)
     {
-        if (surfaceFileType(f) == "geo")
-        {
-            csgFile = f;
-        }
-        else if (!canReadSurfaceFile(f))
+        if (surfaceFileType(f) != "geo" && !canReadSurfaceFile(f))
         {
             throw FatalError
             (

@@ -62,7 +62,7 @@ private:
 //  4, on every core).
 CoarseMesh meshOnMaster(const Geometry& geometry, const coarseMeshParameters& parameters)
 {
-    if (parameters.mesher == "netgen" && !geometry.remeshesCoarseSurface(parameters))
+    if (parameters.mesher == "netgen" && !geometry.remeshesCoarseSurface(parameters.coarseSurface))
     {
         CoarseMesh coarse = geometry.coarseMesh(parameters);
         coarse.volumeMesher = "netgen";

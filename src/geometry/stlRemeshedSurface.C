@@ -35,14 +35,7 @@ pmsh::CoarseMesh pmsh::stlGeometry::remeshedSurface
     std::vector<double> size(s.nTriangles());
     for (label t = 0; t < s.nTriangles(); ++t)
     {
-        size[t] = patchSize[s.solid[t]];
-        for (const sizeRegion& r : parameters.regions)
-        {
-            if (r.size < size[t] && r.contains(s.centroid(t)))
-            {
-                size[t] = r.size;
-            }
-        }
+        size[t] = regionSizeAt(parameters.regions, s.centroid(t), patchSize[s.solid[t]]);
     }
 
     // curvatureRefinement cells a radian: chords sag by at most
@@ -51,7 +44,8 @@ pmsh::CoarseMesh pmsh::stlGeometry::remeshedSurface
         parameters.curvatureRefinement > 0 ? 1/(8*parameters.curvatureRefinement) : 0;
     const remeshedTriangulation remeshed = remeshSurface
     (
-        s, d.region, d.featureEdges, size, sagFraction, parameters.minCellSize, what_
+        s, d.allTriangles, d.region, d.featureEdges, size, sagFraction,
+        parameters.minCellSize, what_
     );
     Info
         << "    coarse surface remeshed from the surface's " << s.nTriangles()

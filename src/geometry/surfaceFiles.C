@@ -32,6 +32,19 @@ std::string pmsh::surfaceFileType(const std::string& fileName)
 }
 
 
+std::string pmsh::csgFileOf(const std::vector<std::string>& fileNames)
+{
+    for (const std::string& f : fileNames)
+    {
+        if (surfaceFileType(f) == "geo")
+        {
+            return f;
+        }
+    }
+    return {};
+}
+
+
 bool pmsh::canReadSurfaceFile(const std::string& fileName)
 {
     const std::string type = surfaceFileType(fileName);

@@ -1,5 +1,5 @@
 // CGAL's own assertions are for CGAL's debugging: OpenFOAM's wmake builds
-// without NDEBUG, and with them the motorBike's wrap took 20 s, not 15.
+// without NDEBUG, and with them the motorBike's wrap took 20 s, not 16.
 // The wrap is checked here instead (checkStl).
 #define CGAL_NDEBUG
 

@@ -204,15 +204,13 @@ domainBox readDomain
     }
     const dictionary& dd = e.dict();
     rejectUnknownEntries(d, dd, entries, owner, "Valid entries are: " + joinedWords(entries));
-    for (const std::string& f : files)
+    const std::string csgFile = csgFileOf(files);
+    if (!csgFile.empty())
     {
-        if (surfaceFileType(f) == "geo")
-        {
-            check.error(d, e)
-                << "Entry 'domain' is for surface files, not the Netgen CSG file \""
-                << f.c_str() << "\": a CSG geometry makes its own domain (box and not"
-                << " body). Remove 'domain'" << Foam::exit(Foam::FatalIOError);
-        }
+        check.error(d, e)
+            << "Entry 'domain' is for surface files, not the Netgen CSG file \""
+            << csgFile.c_str() << "\": a CSG geometry makes its own domain (box and not"
+            << " body). Remove 'domain'" << Foam::exit(Foam::FatalIOError);
     }
     check.require(dd, "type", owner, "Valid types: box; " + example);
     const entry* t = foam::findEntry(dd, "type");
@@ -536,12 +534,7 @@ std::string readCoarseSurface
         dict, "coarseSurface", "auto",
         std::vector<std::string>(coarseSurfaceRoutes.begin(), coarseSurfaceRoutes.end())
     );
-    const bool csg = std::any_of
-    (
-        geometryFiles.begin(), geometryFiles.end(),
-        [](const std::string& f) { return surfaceFileType(f) == "geo"; }
-    );
-    if (route == "remesh" && csg)
+    if (route == "remesh" && !csgFileOf(geometryFiles).empty())
     {
         check.error(dict, "coarseSurface")
             << "coarseSurface remesh is for surface files (STL, OBJ, ...):"

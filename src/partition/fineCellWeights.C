@@ -85,17 +85,10 @@ std::vector<double> pmsh::fineCellWeights
         // Inside a refinement region the volume mesher is held to the
         // region's size, as to H in a uniform mesh: 1/h^3 there
         const point3 centroid = 0.25*(x[t[0]] + x[t[1]] + x[t[2]] + x[t[3]]);
-        double regionSize = H;
-        for (const sizeRegion& r : regions)
-        {
-            if (r.size < H && r.contains(centroid))
-            {
-                weights[c] = std::max(weights[c], 2*volume/(h*h*h));
-                regionSize = std::min(regionSize, r.size);
-            }
-        }
+        const double regionSize = regionSizeAt(regions, centroid, H);
         if (regionSize < H)
         {
+            weights[c] = std::max(weights[c], 2*volume/(h*h*h));
             sums.regions += weights[c];
             sums.regionsGraded += volume/(regionSize*h*h);
         }

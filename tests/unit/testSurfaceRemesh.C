@@ -57,7 +57,7 @@ TEST(surfaceRemesh, aSphereInABoxIsRemeshedClosedOnItsSurfacesAtEachPatchsSize)
     coarseMeshParameters p(2.0);
     p.coarseSurface = "remesh";
     p.patchMaxCellSize = [](const std::string& patch) { return patch == "body" ? 0.25 : 0.0; };
-    ASSERT_TRUE(g->remeshesCoarseSurface(p));
+    ASSERT_TRUE(g->remeshesCoarseSurface(p.coarseSurface));
     const CoarseMesh m = g->coarseSurface(p);
 
     EXPECT_TRUE(m.tets.empty());
@@ -132,9 +132,12 @@ TEST(surfaceRemesh, aThinShellIsRefinedWhereItsSidesWouldCross)
     }
     s.solid.assign(s.triangles.size(), 0);
 
+    std::vector<boxTree::entry> entries;
+    for (label t = 0; t < s.nTriangles(); ++t) entries.push_back(triangleEntry(s, t));
     const remeshedTriangulation r = remeshSurface
     (
-        s, region, {}, std::vector<double>(s.nTriangles(), 0.5), 0, 0, "the hollow ball"
+        s, boxTree(std::move(entries)), region, {},
+        std::vector<double>(s.nTriangles(), 0.5), 0, 0, "the hollow ball"
     );
     EXPECT_GT(r.nRefined, 0);
     EXPECT_GT(r.nRounds, 1);
