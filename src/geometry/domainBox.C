@@ -5,6 +5,7 @@
 #include "domainBox.H"
 #include "surfaceBuilder.H"
 #include "pmshError.H"
+#include "stlGeometry.H"
 
 #include "messageStream.H"
 
@@ -133,6 +134,16 @@ pmsh::surfaceWrapReport pmsh::wrapBodies
         << report.maxDistance << " from them; " << report.nTidied
         << " moved to a neighbouring patch (islands of the nearest CAD"
         << " triangle's patches)\n";
+    if (report.nFeatureEdges > 0)
+    {
+        const point3& at = report.featureDistanceAt;
+        Foam::Info
+            << "        the bodies' " << report.nFeatureEdges << " feature edges (sharper than "
+            << stlGeometry::featureAngle << " degrees): the wrap at most "
+            << report.featureDistance << " from them (" << report.featureDistance/box.wrapSize
+            << " of wrapSize), at (" << at[0] << ' ' << at[1] << ' ' << at[2] << "); "
+            << 100*report.featureShareWithinSize << " % of the points along them within wrapSize\n";
+    }
     return report;
 }
 

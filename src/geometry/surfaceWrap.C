@@ -5,6 +5,7 @@
 
 #include "surfaceWrap.H"
 #include "matchByPoints.H"
+#include "stlGeometry.H"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -36,6 +37,55 @@ using TriangleTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, TrianglePrimitive
 Point cgal(const pmsh::point3& p)
 {
     return Point(p[0], p[1], p[2]);
+}
+
+
+//- The CAD's feature edges (two triangles of one solid meeting at more than
+//  stlGeometry's featureAngle, or of two solids), sampled every `spacing`,
+//  ends included: where the wrap rounds the CAD's corners and trailing
+//  edges. Edges of one triangle or of three and more (the dirt the wrap
+//  is for) have no angle and are left out.
+std::vector<pmsh::point3> featureEdgeSamples
+(
+    const pmsh::stlSurface& s,
+    const double spacing,
+    pmsh::label& nFeatureEdges
+)
+{
+    using namespace pmsh;
+    const double cosFeature = std::cos(stlGeometry::featureAngle*M_PI/180.0);
+    std::vector<point3> samples;
+    nFeatureEdges = 0;
+    forEachSamePointsGroup
+    (
+        s.points.size(), matchId(3*s.nTriangles()),
+        [&](matchId id)
+        {
+            const triVerts& f = s.triangles[id/3];
+            return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
+        },
+        [&](const matchId* ids, std::size_t n)
+        {
+            if (n != 2) return;
+            const label t1 = label(ids[0]/3), t2 = label(ids[1]/3);
+            const vector3 n1 = s.areaNormal(t1), n2 = s.areaNormal(t2);
+            const double m = std::sqrt(magSqr(n1)*magSqr(n2));
+            if (s.solid[t1] == s.solid[t2] && (m <= 0 || dot(n1, n2) >= cosFeature*m))
+            {
+                return;
+            }
+            ++nFeatureEdges;
+            const triVerts& f = s.triangles[t1];
+            const point3& a = s.points[f[ids[0] % 3]];
+            const point3& b = s.points[f[(ids[0] + 1) % 3]];
+            const int nSteps = std::max(1, int(std::ceil(std::sqrt(magSqr(b - a))/spacing)));
+            for (int k = 0; k <= nSteps; ++k)
+            {
+                samples.push_back(a + (double(k)/nSteps)*(b - a));
+            }
+        }
+    );
+    return samples;
 }
 
 } // End anonymous namespace
@@ -222,6 +272,32 @@ pmsh::stlSurface pmsh::wrapSurface
     {
         maxDistance2 = std::max(maxDistance2, inputTree.squared_distance(cgal(out.centroid(t))));
     }
+
+    // How far the wrap lies from the CAD's feature edges: a convex edge is
+    // rounded at about the offset, a concave one bridged further
+    std::vector<Triangle> wrapTriangles;
+    wrapTriangles.reserve(out.triangles.size());
+    for (const triVerts& t : out.triangles)
+    {
+        wrapTriangles.emplace_back(cgal(out.points[t[0]]), cgal(out.points[t[1]]), cgal(out.points[t[2]]));
+    }
+    TriangleTree wrapTree(wrapTriangles.begin(), wrapTriangles.end());
+    wrapTree.accelerate_distance_queries();
+    double featureDistance2 = -1;
+    label nSamples = 0, nWithinSize = 0;
+    for (const point3& p : featureEdgeSamples(s, 0.25*size, report.nFeatureEdges))
+    {
+        const double d2 = wrapTree.squared_distance(cgal(p));
+        ++nSamples;
+        nWithinSize += (d2 <= size*size);
+        if (d2 > featureDistance2)
+        {
+            featureDistance2 = d2;
+            report.featureDistanceAt = p;
+        }
+    }
+    report.featureDistance = std::sqrt(std::max(featureDistance2, 0.0));
+    report.featureShareWithinSize = nSamples ? double(nWithinSize)/nSamples : 1.0;
 
     report.wrapped = true;
     report.size = size;

@@ -239,6 +239,9 @@ void writeSummaryJson
         << ", \"offset\": " << wrap.offset << ", \"inputTriangles\": " << wrap.nInputTriangles
         << ", \"triangles\": " << wrap.nTriangles << ", \"tidied\": " << wrap.nTidied
         << ", \"maxDistance\": " << wrap.maxDistance
+        << ", \"featureEdges\": " << wrap.nFeatureEdges
+        << ", \"featureDistance\": " << wrap.featureDistance
+        << ", \"featureShareWithinSize\": " << wrap.featureShareWithinSize
         << ", \"seconds\": " << wrap.seconds << "},\n"
         << "  \"meanDistanceOffGeometry\": " << repair.meanDistance << ",\n"
         << "  \"fineCellsPerRank\": " << jsonArray(f.cellsPerRank) << ",\n"

@@ -272,6 +272,15 @@ class bodyInBox(CaseTest):
         wrap = summary["wrap"]
         self.assertGreaterEqual(wrap["maxDistance"], 0.99*wrap["offset"])
         self.assertLess(wrap["maxDistance"], wrap["size"] + wrap["offset"])
+        # The cup's 8 closed edges are its feature edges (the 4 of its open
+        # side have one triangle: no angle). Its outer corners are rounded
+        # at about the offset, its inner ones bridged: never a cell away.
+        self.assertEqual(wrap["featureEdges"], 8)
+        self.assertGreaterEqual(wrap["featureDistance"], 0.5*wrap["offset"])
+        self.assertLess(wrap["featureDistance"], wrap["size"])
+        self.assertEqual(wrap["featureShareWithinSize"], 1)
+        self.assertRegex(log, r"the bodies' 8 feature edges \(sharper than 30 degrees\): "
+                              r"the wrap at most \S+ from them")
 
     def test_twoOverlappingCubesAreWrappedIntoOneBodyNp2(self):
         log, summary = self.dirty_body([((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5), "body", ()),
