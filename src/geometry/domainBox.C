@@ -5,7 +5,6 @@
 #include "domainBox.H"
 #include "surfaceBuilder.H"
 #include "pmshError.H"
-#include "stlGeometry.H"
 
 #include "messageStream.H"
 
@@ -139,7 +138,7 @@ pmsh::surfaceWrapReport pmsh::wrapBodies
         const point3& at = report.featureDistanceAt;
         Foam::Info
             << "        the bodies' " << report.nFeatureEdges << " feature edges (sharper than "
-            << stlGeometry::featureAngle << " degrees): the wrap at most "
+            << surfaceFeatureAngle << " degrees): the wrap at most "
             << report.featureDistance << " from them (" << report.featureDistance/box.wrapSize
             << " of wrapSize), at (" << at[0] << ' ' << at[1] << ' ' << at[2] << "); "
             << 100*report.featureShareWithinSize << " % of the points along them within wrapSize\n";

@@ -5,7 +5,6 @@
 
 #include "surfaceWrap.H"
 #include "matchByPoints.H"
-#include "stlGeometry.H"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -41,7 +40,7 @@ Point cgal(const pmsh::point3& p)
 
 
 //- The CAD's feature edges (two triangles of one solid meeting at more than
-//  stlGeometry's featureAngle, or of two solids), sampled every `spacing`,
+//  surfaceFeatureAngle, or of two solids), sampled every `spacing`,
 //  ends included: where the wrap rounds the CAD's corners and trailing
 //  edges. Edges of one triangle or of three and more (the dirt the wrap
 //  is for) have no angle and are left out.
@@ -53,7 +52,7 @@ std::vector<pmsh::point3> featureEdgeSamples
 )
 {
     using namespace pmsh;
-    const double cosFeature = std::cos(stlGeometry::featureAngle*M_PI/180.0);
+    const double cosFeature = std::cos(surfaceFeatureAngle*M_PI/180.0);
     std::vector<point3> samples;
     nFeatureEdges = 0;
     forEachSamePointsGroup
