@@ -8,10 +8,63 @@
   (1.2-1.8x as many; which surfaces take that path depends on the point
   order: 1 of 7 partition surfaces at r = 3 and 3 of 96 at r = 2 in the
   tutorials): the flags are cleared before it.
+
+  smoothedVolumeMesh gives Netgen another mesher's tets; quirks there:
+  Netgen's tets turn the other way (a positive tet is negative to Netgen,
+  whose optimiser would take every one for inverted), and every point
+  added is an inner point, yet ImproveMesh moves none of a surface
+  element's points.
 \*---------------------------------------------------------------------------*/
 
 #include "netgenMeshConversion.H"
 #include "pmshError.H"
+
+namespace
+{
+
+//- Netgen's mesh of the closed surface (outward triangles) and its
+//  parameters: the points in order, 1-based
+void addSurface
+(
+    nglib::Ng_Mesh* mesh,
+    const std::vector<pmsh::point3>& points,
+    const std::vector<pmsh::triVerts>& triangles
+)
+{
+    for (const pmsh::point3& x : points)
+    {
+        double xyz[3] = {x[0], x[1], x[2]};
+        nglib::Ng_AddPoint(mesh, xyz);
+    }
+    for (const pmsh::triVerts& t : triangles)
+    {
+        // Ng_NewMesh's face descriptor has DomainIn 1, DomainOut 0:
+        // triangles must point outward (right-hand rule)
+        int pi[3] = {int(t[0] + 1), int(t[1] + 1), int(t[2] + 1)};
+        nglib::Ng_AddSurfaceElement(mesh, nglib::NG_TRIG, pi);
+    }
+}
+
+
+//- An element larger than the domain is meaningless, and Netgen's local
+//  size tree does not need 1e300
+pmsh::ng::meshParameters withinDomain
+(
+    const pmsh::ng::meshParameters& parameters,
+    const std::vector<pmsh::point3>& points
+)
+{
+    const double diagonal = pmsh::ng::boundingBoxDiagonal(points);
+    pmsh::ng::meshParameters p = parameters;
+    if (!(p.maxh < diagonal))
+    {
+        p.maxh = diagonal;
+    }
+    return p;
+}
+
+} // End anonymous namespace
+
 
 // * * * * * * * * * * * * * Volume of a closed surface  * * * * * * * * * * //
 
@@ -25,33 +78,13 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
 {
     const char* function = "pmsh::ng::surfaceVolumeMesh";
     const label nPoints = label(points.size());
-
-    // An element larger than the domain is meaningless, and Netgen's local
-    // size tree does not need 1e300
-    const double diagonal = boundingBoxDiagonal(points);
-    meshParameters p = parameters;
-    if (!(p.maxh < diagonal))
-    {
-        p.maxh = diagonal;
-    }
+    const meshParameters p = withinDomain(parameters, points);
 
     netgenSession session;
 
     nglibMeshGuard guard(nglib::Ng_NewMesh());
     nglib::Ng_Mesh* mesh = guard.mesh;
-
-    for (const point3& x : points)
-    {
-        double xyz[3] = {x[0], x[1], x[2]};
-        nglib::Ng_AddPoint(mesh, xyz);
-    }
-    for (const triVerts& t : triangles)
-    {
-        // 1-based; Ng_NewMesh's face descriptor has DomainIn 1, DomainOut 0:
-        // triangles must point outward (right-hand rule)
-        int pi[3] = {int(t[0] + 1), int(t[1] + 1), int(t[2] + 1)};
-        nglib::Ng_AddSurfaceElement(mesh, nglib::NG_TRIG, pi);
-    }
+    addSurface(mesh, points, triangles);
 
     // Transfer_Parameters copies these into the global netgen::mparam;
     // fineness, closeedge*, minedgelen* and opt*meshenable are ignored
@@ -121,6 +154,62 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
     readNglibMesh(mesh, m, what);
     makeTetsPositive(m, what);
 
+    return m;
+}
+
+// * * * * * * * * * * * Another mesher's tets smoothed  * * * * * * * * * * //
+
+pmsh::ng::volumeMesh pmsh::ng::smoothedVolumeMesh
+(
+    const std::vector<point3>& points,
+    const std::vector<tetVerts>& tets,
+    const std::vector<triVerts>& triangles,
+    const meshParameters& parameters,
+    const std::string& what
+)
+{
+    const meshParameters p = withinDomain(parameters, points);
+
+    netgenSession session;
+
+    nglibMeshGuard guard(nglib::Ng_NewMesh());
+    nglib::Ng_Mesh* mesh = guard.mesh;
+    addSurface(mesh, points, triangles);
+    for (const tetVerts& t : tets)
+    {
+        // Quirk: turned for Netgen (a positive tet is inverted to it)
+        int pi[4] = {int(t[0] + 1), int(t[2] + 1), int(t[1] + 1), int(t[3] + 1)};
+        nglib::Ng_AddVolumeElement(mesh, nglib::NG_TET, pi);
+    }
+
+    nglib::Ng_Meshing_Parameters mp;
+    mp.maxh = p.maxh;
+    mp.grading = p.grading;
+    mp.optsteps_3d = 1;
+    try
+    {
+        mp.Transfer_Parameters();
+        // OptimizeVolume's steps are the letters of optimize3d ("cmdmustm"
+        // by default): "m" is ImproveMesh alone, no flips, no collapses
+        netgen::mparam.optimize3d = "m";
+        netgen::Mesh& volume = *reinterpret_cast<netgen::Mesh*>(mesh);
+        volume.CalcLocalH(netgen::mparam.grading);
+        restrictLocalSizes(volume, p);
+        netgen::OptimizeVolume(netgen::mparam, volume);
+    }
+    catch (const std::exception& e)
+    {
+        throw FatalError
+        (
+            msg() << "Netgen failed to smooth the volume mesh of " << what << ": "
+                << exceptionText(e) << session.tail(),
+            "pmsh::ng::smoothedVolumeMesh"
+        );
+    }
+
+    volumeMesh m;
+    readNglibMesh(mesh, m, what);
+    makeTetsPositive(m, what);
     return m;
 }
 
