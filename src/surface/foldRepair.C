@@ -15,7 +15,7 @@ namespace
 using namespace pmsh;
 
 //- Refined triangles of a lattice (points v0 < v1 < v2 at `pos`) that
-//  turned against the coarse face (v0, v1, v2).
+//  turned against the coarse face (v0, v1, v2) or lie flat on it.
 label countLatticeFolds(const std::vector<point3>& pos, int n)
 {
     auto P = [&](int i, int j) -> const point3& { return pos[j*(n + 1) + i]; };
@@ -25,7 +25,7 @@ label countLatticeFolds(const std::vector<point3>& pos, int n)
     forEachLatticeTriangle(n, [&](int i0, int j0, int i1, int j1, int i2, int j2)
     {
         const point3& a = P(i0, j0);
-        if (dot(cross(P(i1, j1) - a, P(i2, j2) - a), coarseNormal) <= 0)
+        if (turnedOrFlat(cross(P(i1, j1) - a, P(i2, j2) - a), coarseNormal, n))
         {
             ++nFolded;
         }

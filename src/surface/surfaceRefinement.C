@@ -293,7 +293,7 @@ pmsh::label pmsh::countFoldedTriangles
                 fine.points[tri[1]] - fine.points[tri[0]],
                 fine.points[tri[2]] - fine.points[tri[0]]
             );
-            if (dot(normal, coarseNormal) <= 0)
+            if (turnedOrFlat(normal, coarseNormal, 1 << levels))
             {
                 ++nFolded;
             }
@@ -337,7 +337,7 @@ pmsh::FineSurface pmsh::refinePartSurface
                 const point3& a = fine.points[tri[0]];
                 const point3& b = fine.points[tri[1]];
                 const point3& c = fine.points[tri[2]];
-                if (dot(cross(b - a, c - a), coarseNormal) <= 0)
+                if (turnedOrFlat(cross(b - a, c - a), coarseNormal, 1 << levels))
                 {
                     const label region = partSurface.region[facei];
                     where = "at " + str((1.0/3.0)*(a + b + c)) + " on "

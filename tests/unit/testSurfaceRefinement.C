@@ -403,6 +403,69 @@ TEST(surfaceRefinement, localFoldIsRepairedLocallyAndOnlyThere)
 }
 
 
+namespace
+{
+
+// The unit sphere, except that points within 25 degrees of the direction
+// (0, 1, 1) land a ten-millionth of their distance away from a straight
+// crease through it along x: the refined triangles there keep their turn
+// but lie all but flat, as lattice points projected onto a CAD crease do
+class creaseSphere : public analyticSphere
+{
+public:
+    point3 projectToSurface(const point3& p, label) const override
+    {
+        const point3 q = (1.0/std::sqrt(magSqr(p)))*p;
+        if ((q[1] + q[2])/std::sqrt(2.0) <= std::cos(25*M_PI/180))
+        {
+            return q;
+        }
+        const point3 onCrease{q[0], 1/std::sqrt(2.0), 1/std::sqrt(2.0)};
+        return onCrease + 1e-7*(q - onCrease);
+    }
+};
+
+} // End anonymous namespace
+
+
+TEST(surfaceRefinement, refinedTrianglesLyingFlatOnACreaseAreRepairedLikeFolds)
+{
+    const CoarseMesh m = octahedron();
+    const creaseSphere geometry;
+    const coarsePartSurface ps = partitionSurface(m, {}, 0);
+    const int levels = 2, n = 1 << levels;
+    // The smallest share of its coarse face's area a refined triangle has
+    auto smallestShare = [&](const FineSurface& fine)
+    {
+        double smallest = 1;
+        for (std::size_t facei = 0; facei < ps.faces.size(); ++facei)
+        {
+            const triVerts& f = ps.faces[facei];
+            const vector3 coarse = cross(m.points[f[1]] - m.points[f[0]], m.points[f[2]] - m.points[f[0]]);
+            for (int t = 0; t < n*n; ++t)
+            {
+                const triVerts& tri = fine.triangles[facei*n*n + t];
+                const vector3 refined = cross
+                (
+                    fine.points[tri[1]] - fine.points[tri[0]],
+                    fine.points[tri[2]] - fine.points[tri[0]]
+                );
+                smallest = std::min(smallest, n*n*dot(refined, coarse)/magSqr(coarse));
+            }
+        }
+        return smallest;
+    };
+
+    const FineSurface projected = refineSurface(m, ps, boundaryEdgeSurfaces(m), &geometry, levels, false);
+    EXPECT_GT(smallestShare(projected), 0);       // not turned: no fold by its sign
+    EXPECT_LT(smallestShare(projected), 1e-5);    // but flat
+
+    const FineSurface repaired = refinePartSurface(m, {}, 0, &geometry, levels);
+    EXPECT_GT(repaired.repair.nPointsOff, 0);
+    EXPECT_GT(smallestShare(repaired), 1e-3);
+}
+
+
 TEST(surfaceRefinement, foldRepairDecidesAnInterfaceEdgeAlikeOnBothSidesAndAsInSerial)
 {
     // Edge 3-5's boundary faces are in different parts: each part decides
