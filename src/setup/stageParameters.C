@@ -24,6 +24,7 @@ pmsh::volumeMeshParameters pmsh::volumeParameters
     }
     p.grading = settings.grading;
     p.optimisationSteps = settings.optimisationSteps;
+    p.netgenSmoothing = settings.optimisationSteps >= netgenSmoothingFromSteps;
     p.threads = settings.volumeMesherThreads;
     return p;
 }

@@ -61,10 +61,10 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
       : gmshModelMesh(surfacePoints, surfaceTriangles, volumes, parameters);
 
     // HXT's interior points where Netgen's smoothing puts them: the drag
-    // of a body meshed without layers comes half-way to Netgen's meshes'
+    // of a body meshed without layers comes closer to Netgen's meshes'
     // (bench/results/drag-study.md); at 1.57x the time of the whole run on
-    // the 1M-cell sphere, so only when more than one step is asked for
-    if (parameters.optimisationSteps >= netgenSmoothingSteps)
+    // the 1M-cell sphere, so only when asked (netgenSmoothingFromSteps)
+    if (parameters.netgenSmoothing)
     {
         reportMeshingStep("Netgen's smoothing of HXT's interior points");
         ng::meshParameters mp;
