@@ -11,12 +11,7 @@ pmsh::surfaceEdgeDefects pmsh::findSurfaceEdgeDefects
     const std::vector<triVerts>& triangles
 )
 {
-    // Edge k of triangle t, directed as the triangle goes round, is 3*t + k
-    auto edgeOf = [&](matchId id)
-    {
-        const triVerts& f = triangles[id/3];
-        return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
-    };
+    auto edgeOf = [&](matchId id) { return triangleEdge(triangles, id); };
     label nPoints = 0;
     for (const triVerts& f : triangles)
     {

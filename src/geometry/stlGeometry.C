@@ -138,11 +138,7 @@ pmsh::stlGeometry::stlGeometry
     std::vector<std::array<label, 3>> smoothNeighbour(nt, {-1, -1, -1});
     std::vector<int> nSmooth(nt, 0);
     std::vector<std::array<label, 2>> featureEdgeTriangles;
-    auto edgeOf = [&](matchId id)
-    {
-        const triVerts& f = s.triangles[id/3];
-        return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
-    };
+    auto edgeOf = [&](matchId id) { return triangleEdge(s.triangles, id); };
     forEachSamePointsGroup
     (
         s.points.size(), matchId(3*nt), edgeOf,

@@ -58,11 +58,7 @@ std::vector<pmsh::point3> featureEdgeSamples
     forEachSamePointsGroup
     (
         s.points.size(), matchId(3*s.nTriangles()),
-        [&](matchId id)
-        {
-            const triVerts& f = s.triangles[id/3];
-            return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
-        },
+        [&](matchId id) { return triangleEdge(s.triangles, id); },
         [&](const matchId* ids, std::size_t n)
         {
             if (n != 2) return;
@@ -99,11 +95,7 @@ pmsh::label pmsh::tidyWrapPatches(stlSurface& s, const label smallestIsland)
     forEachSamePointsGroup
     (
         s.points.size(), matchId(3*nt),
-        [&](matchId id)
-        {
-            const triVerts& f = s.triangles[id/3];
-            return std::array<label, 2>{f[id % 3], f[(id + 1) % 3]};
-        },
+        [&](matchId id) { return triangleEdge(s.triangles, id); },
         [&](const matchId* ids, std::size_t n)
         {
             if (n == 2)

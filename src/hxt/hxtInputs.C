@@ -94,10 +94,8 @@ pmsh::ng::sizeField pmsh::hxtSizeField
     // times Netgen's there.
     constexpr double gradingShare = 0.6;
     constexpr double regionShare = 0.75;
-    ng::meshParameters sizes;
-    sizes.maxh = parameters.maxCellSize;
-    sizes.grading = gradingShare*parameters.grading;
-    sizes.regions = parameters.regions;
+    ng::meshParameters sizes = ng::meshParametersOf(parameters);
+    sizes.grading *= gradingShare;
     for (sizeRegion& r : sizes.regions)
     {
         r.size *= regionShare;

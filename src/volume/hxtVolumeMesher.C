@@ -67,13 +67,10 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
     if (parameters.netgenSmoothing)
     {
         reportMeshingStep("Netgen's smoothing of HXT's interior points");
-        ng::meshParameters mp;
-        mp.maxh = parameters.maxCellSize;
-        mp.grading = parameters.grading;
-        mp.regions = parameters.regions;
         ng::volumeMesh smoothed = ng::smoothedVolumeMesh
         (
-            result.points, result.tets, surfaceTriangles, mp, parameters.what
+            result.points, result.tets, surfaceTriangles,
+            ng::meshParametersOf(parameters), parameters.what
         );
         result = TetMesh();
         result.points = std::move(smoothed.points);

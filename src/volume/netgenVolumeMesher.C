@@ -78,11 +78,7 @@ pmsh::TetMesh pmsh::netgenVolumeMesher::generate
     const volumeMeshParameters& parameters
 ) const
 {
-    ng::meshParameters mp;
-    mp.maxh = parameters.maxCellSize;
-    mp.grading = parameters.grading;
-    mp.optimisationSteps = parameters.optimisationSteps;
-    mp.regions = parameters.regions;
+    const ng::meshParameters mp = ng::meshParametersOf(parameters);
 
     ng::volumeMesh m;
     {
