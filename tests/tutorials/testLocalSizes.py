@@ -21,8 +21,8 @@ CHANNEL_GEO = """algebraic3d
 solid channel = orthobrick(0, 0, 0; 12, 3, 3) -bcname=walls;
 tlo channel;
 """
-GLOBAL_SIZE = 0.5
-REGION_SIZE = 0.125
+GLOBAL_SIZE = 0.6
+REGION_SIZE = 0.15
 REGIONS = """refinementRegions
 {
     cube  { type box; min (1 0.9 0.9); max (2.2 2.1 2.1); maxCellSize %(h)g; }
