@@ -79,12 +79,13 @@ class sphereSTL(ParallelCaseTest):
     pass
 
 
+# r = 1 on 2 ranks, r = 2 on 2, 3 and 4: r = 2 runs every stage r = 1
+# does
 for cls in (sphere, shaft, sphereSTL):
-    for np in (2, 3, 4):
-        for r in (1, 2):
-            for backend in ("netgen", "hxt"):
-                t = make_cycle_test(cls.__name__, np, r, backend)
-                setattr(cls, t.__name__, t)
+    for np, r in ((2, 1), (2, 2), (3, 2), (4, 2)):
+        for backend in ("netgen", "hxt"):
+            t = make_cycle_test(cls.__name__, np, r, backend)
+            setattr(cls, t.__name__, t)
 
 
 class parallelRun(ParallelCaseTest):
