@@ -5,6 +5,7 @@
 
 #include "foldRepair.H"
 #include "faceLattice.H"
+#include "triangleCrossings.H"
 #include "pmshError.H"
 
 #include <cmath>
@@ -34,6 +35,33 @@ label countLatticeFolds(const std::vector<point3>& pos, int n)
 }
 
 
+//- The lattices of faces, as one surface: their triangles in the order of
+//  the faces, a point on the edge two faces share once (both compute its
+//  bits alike, surfaceRefinement.H).
+void appendLattice
+(
+    const std::vector<point3>& pos,
+    int n,
+    std::map<point3, label>& pointIndex,
+    std::vector<point3>& points,
+    std::vector<triVerts>& triangles
+)
+{
+    std::vector<label> index(pos.size());
+    for (std::size_t k = 0; k < pos.size(); ++k)
+    {
+        const auto inserted = pointIndex.emplace(pos[k], label(points.size()));
+        if (inserted.second) points.push_back(pos[k]);
+        index[k] = inserted.first->second;
+    }
+    auto P = [&](int i, int j) { return index[j*(n + 1) + i]; };
+    forEachLatticeTriangle(n, [&](int i0, int j0, int i1, int j1, int i2, int j2)
+    {
+        triangles.push_back({P(i0, j0), P(i1, j1), P(i2, j2)});
+    });
+}
+
+
 //- The three edges of the face with sorted points v.
 std::array<foldRepair::edgeKey, 3> edgesOf(const triVerts& v)
 {
@@ -50,7 +78,8 @@ pmsh::foldRepair::foldRepair
     const CoarseMesh& coarse,
     const boundaryEdgeSurfaces& edgeSurfaces,
     const Geometry* geometry,
-    int levels
+    int levels,
+    const std::vector<label>& cellPart
 )
 :
     coarse_(coarse),
@@ -90,6 +119,37 @@ pmsh::foldRepair::foldRepair
         std::vector<faceKey>& faces = around.second;
         std::sort(faces.begin(), faces.end());
         faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    }
+    if (cellPart.empty())
+    {
+        return;
+    }
+    // The interface faces of each cell with a boundary face, from the
+    // whole partition (every rank holds it, so every rank that decides on
+    // an edge decides alike)
+    const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
+    for (label c = 0; c < coarse.nCells(); ++c)
+    {
+        std::vector<faceKey> onSurface, interfaces;
+        for (int fi = 0; fi < 4; ++fi)
+        {
+            const faceKey f = sortedFace(tetFace(coarse.tets[c], fi));
+            const label nbr = neighbours[c][fi];
+            if (surfaceOf(f) >= 0)
+            {
+                onSurface.push_back(f);
+            }
+            else if (!isBoundaryNeighbour(nbr) && cellPart[nbr] != cellPart[c])
+            {
+                interfaces.push_back(f);
+            }
+        }
+        if (interfaces.empty()) continue;
+        for (const faceKey& f : onSurface)
+        {
+            std::vector<faceKey>& beside = interfacesBeside_[f];
+            beside.insert(beside.end(), interfaces.begin(), interfaces.end());
+        }
     }
 }
 
@@ -191,6 +251,10 @@ bool pmsh::foldRepair::inputsChanged(const faceKey& f, int round) const
 
 bool pmsh::foldRepair::folds(const faceKey& f, int round) const
 {
+    if (crossesInterface(f, round))
+    {
+        return true;
+    }
     // A boundary face whose surface still folds across one of its edges
     // after that edge was left linear: the face itself must go linear
     if (surfaceOf(f) >= 0)
@@ -296,6 +360,45 @@ bool pmsh::foldRepair::foldsAcross(const edgeKey& e, int round) const
         result = fineCos < -0.9 && fineCos < coarseCos - 0.01;
     }
     acrossMemo_[key] = result;
+    return result;
+}
+
+
+bool pmsh::foldRepair::crossesInterface(const faceKey& f, int round) const
+{
+    const auto beside = interfacesBeside_.find(f);
+    if (beside == interfacesBeside_.end())
+    {
+        return false;
+    }
+    const auto key = std::make_pair(round, f);
+    const auto memo = interfaceMemo_.find(key);
+    if (memo != interfaceMemo_.end())
+    {
+        return memo->second;
+    }
+    // The interface faces' triangles first: a triangle of f that crosses
+    // one of them and one of f's own names the interface's (crossingTriangles
+    // gives the smallest index)
+    const int n = 1 << levels_;
+    std::map<point3, label> pointIndex;
+    std::vector<point3> points;
+    std::vector<triVerts> triangles;
+    for (const faceKey& F : beside->second)
+    {
+        appendLattice(refinedFace(F, round - 1), n, pointIndex, points, triangles);
+    }
+    const label nInterface = triangles.size();
+    appendLattice(refinedFace(f, round - 1), n, pointIndex, points, triangles);
+    std::vector<bool> tested(triangles.size(), false);
+    std::fill(tested.begin() + nInterface, tested.end(), true);
+    const std::vector<label> crossing = crossingTriangles(points, triangles, tested, true);
+    bool result = false;
+    for (label t = nInterface; t < label(triangles.size()) && !result; ++t)
+    {
+        result = crossing[t] != 0 && crossing[t] - 1 < nInterface;
+    }
+    interfaceMemo_[key] = result;
     return result;
 }
 

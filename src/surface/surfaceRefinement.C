@@ -181,7 +181,8 @@ public:
         const boundaryEdgeSurfaces& edgeSurfaces,
         const Geometry* geometry,
         int levels,
-        bool repairFolds
+        bool repairFolds,
+        const std::vector<label>& cellPart
     )
     :
         coarse_(coarse),
@@ -202,7 +203,7 @@ public:
         sharedPoints_.reserve(nCoarseFaces*(3*n_/2 + 1));
         if (geometry && repairFolds)
         {
-            repair_.reset(new foldRepair(coarse, edgeSurfaces, geometry, levels));
+            repair_.reset(new foldRepair(coarse, edgeSurfaces, geometry, levels, cellPart));
         }
     }
 
@@ -243,7 +244,8 @@ pmsh::FineSurface pmsh::refineSurface
     const boundaryEdgeSurfaces& edgeSurfaces,
     const Geometry* geometry,
     int levels,
-    bool repairFolds
+    bool repairFolds,
+    const std::vector<label>& cellPart
 )
 {
     if (levels < 0 || levels > 15)
@@ -257,7 +259,7 @@ pmsh::FineSurface pmsh::refineSurface
 
     fineSurfaceBuilder builder
     (
-        coarse, partSurface, edgeSurfaces, geometry, levels, repairFolds
+        coarse, partSurface, edgeSurfaces, geometry, levels, repairFolds, cellPart
     );
     for (label facei = 0; facei < label(partSurface.faces.size()); ++facei)
     {
@@ -315,7 +317,8 @@ pmsh::FineSurface pmsh::refinePartSurface
     const coarsePartSurface partSurface = partitionSurface(coarse, cellPart, part);
     FineSurface fine = refineSurface
     (
-        coarse, partSurface, boundaryEdgeSurfaces(coarse, geometry), geometry, levels
+        coarse, partSurface, boundaryEdgeSurfaces(coarse, geometry), geometry, levels,
+        true, cellPart
     );
     const label nFolded = countFoldedTriangles(coarse, partSurface, fine, levels);
     if (nFolded > 0)

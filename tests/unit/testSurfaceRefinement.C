@@ -8,11 +8,13 @@
 #include "testPaths.H"
 #include "pmshError.H"
 #include "surfaceCrossings.H"
+#include "triangleCrossings.H"
 #include "testMeshers.H"
 #include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -584,6 +586,87 @@ TEST(surfaceRefinement, thinBodyWhoseSurfaceFoldsOntoItselfAcrossCoarseEdgesIsRe
     // A few points, off by less than the needle's radius
     EXPECT_LT(repaired.repair.nPointsOff, 20);
     EXPECT_LT(repaired.repair.maxDistance, 0.03);
+}
+
+
+namespace
+{
+
+// Two coarse tets sharing the face (0, 1, 3), in parts 0 and 1: tet 0
+// stands on the boundary face (0, 1, 2) in the plane z = 0 and rises only
+// to z = 0.05 y at that face, so it is a thin wedge along edge 0-1 (a
+// coarse cell on a crease, as on OpenFOAM's motorBike's front tyre)
+CoarseMesh wedgeOnTheInterface()
+{
+    CoarseMesh m;
+    m.points = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, 1, 0.05}, {0.5, 0.3, 1}};
+    m.patches = {{"wall"}};
+    m.tets = {{0, 1, 2, 3}, {0, 1, 3, 4}};
+    const triVerts shared{0, 1, 3};
+    for (const tetVerts& t : m.tets)
+    {
+        for (const triVerts& f : outwardTetFaces(t))
+        {
+            triVerts sorted = f;
+            std::sort(sorted.begin(), sorted.end());
+            if (sorted == shared) continue;
+            const label surface = sorted == triVerts{0, 1, 2} ? 0 : 1;
+            m.boundary.push_back({f, 0, surface});
+        }
+    }
+    return m;
+}
+
+// The wedge's floor (surface 0) projects its points 0.2 up, through the
+// face the wedge shares with the other part, without turning a triangle
+// (a move along the floor's normal); everything else stays where it is
+class liftedFloor : public analyticSphere
+{
+public:
+    point3 projectToSurface(const point3& p, label s) const override
+    {
+        return s == 0 ? point3{p[0], p[1], p[2] + 0.2} : p;
+    }
+    point3 projectToEdge(const point3& p, label, label) const override
+    {
+        return p;
+    }
+};
+
+label crossingCount(const FineSurface& s)
+{
+    const std::vector<label> crossing = crossingTriangles
+    (
+        s.points, s.triangles, std::vector<bool>(s.triangles.size(), true), true
+    );
+    return std::count_if(crossing.begin(), crossing.end(), [](label c) { return c != 0; });
+}
+
+} // End anonymous namespace
+
+
+TEST(surfaceRefinement, boundaryFaceProjectedThroughThePartitionInterfaceOfItsCellStaysLinear)
+{
+    const CoarseMesh m = wedgeOnTheInterface();
+    const std::vector<label> part{0, 1};
+    const liftedFloor geometry;
+    const int levels = 2;
+
+    // Repaired for folds alone (no partition given), the floor's inside
+    // runs through the interface: part 0's surface crosses itself
+    const FineSurface unaware = refineSurface
+    (
+        m, partitionSurface(m, part, 0), boundaryEdgeSurfaces(m), &geometry, levels
+    );
+    EXPECT_EQ(countFoldedTriangles(m, partitionSurface(m, part, 0), unaware, levels), 0);
+    EXPECT_GT(crossingCount(unaware), 0) << "nothing crosses: the test tests nothing";
+
+    const FineSurface s0 = refinePartSurface(m, part, 0, &geometry, levels);
+    EXPECT_EQ(crossingCount(s0), 0);
+    // Linear like a fold: the floor's 3 inside points and the 9 on its edges
+    EXPECT_EQ(s0.repair.nPointsOff, 12);
+    const FineSurface s1 = refinePartSurface(m, part, 1, &geometry, levels);
+    EXPECT_EQ(crossingCount(s1), 0);
 }
 
 
