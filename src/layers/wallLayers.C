@@ -13,11 +13,21 @@ namespace
 
 constexpr double degToRad = 3.14159265358979323846/180;
 
-//- Neighbouring points' thicknesses differ by at most this factor.
+//- Neighbouring points' thicknesses differ by at most this factor, and by
+//  at most this much per unit of the distance between them: where stacks
+//  thin (a groove, the end of a stack) they ramp down over a few
+//  triangles. Without the slope, OpenFOAM's bullet with 5 layers kept the
+//  stacks of its rear grooves 4-7 triangle edges thick beside thin ones:
+//  crumpled tops that HXT's optimiser spent most of stage 4 on.
 constexpr double maxNeighbourRatio = 1.5;
+constexpr double maxThicknessSlope = 0.5;
 
-//- Validity rounds that halve thicknesses; later ones set them to 0.
-constexpr label halvingRounds = 100;
+//- Validity rounds that shrink thicknesses to this share; later ones set
+//  them to 0. By halves the bullet's 0.74 mm stacks went 0.37, 0.185, then
+//  0.09 mm, under their 0.1 mm minimum, and were dropped where 0.13 mm
+//  would have been valid (coverage 94.5 %, 99.3 % with both changes).
+constexpr label shrinkingRounds = 100;
+constexpr double shrinkFactor = 0.7;
 
 //- A lifted unlayered triangle keeps at least this share of its area,
 //  projected on its original plane.
@@ -250,6 +260,7 @@ std::vector<double> featureAndGapThickness
 void smoothThickness(const layerStars& stars, std::vector<double>& thickness)
 {
     const auto& triangles = stars.surface().triangles;
+    const auto& x = stars.surface().points;
     for (;;)
     {
         const std::vector<double> limit = stars.minimum
@@ -263,7 +274,15 @@ void smoothThickness(const layerStars& stars, std::vector<double>& thickness)
                     // Points without layers do not hold their neighbours down
                     if (q != p && thickness[q] > 0)
                     {
-                        least = std::min(least, maxNeighbourRatio*thickness[q]);
+                        least = std::min
+                        (
+                            least,
+                            std::min
+                            (
+                                maxNeighbourRatio*thickness[q],
+                                thickness[q] + maxThicknessSlope*std::sqrt(magSqr(x[q] - x[p]))
+                            )
+                        );
                     }
                 }
                 return least;
@@ -364,8 +383,8 @@ bool promote
 }
 
 
-//- Halve the thickness round invalid prisms and lifted triangles (after
-//  halvingRounds: set it to 0) until nothing changes on any rank.
+//- Shrink the thickness round invalid prisms and lifted triangles (after
+//  shrinkingRounds: set it to 0) until nothing changes on any rank.
 void validityRounds(layerState& state)
 {
     const layerStars& stars = state.stars;
@@ -379,8 +398,8 @@ void validityRounds(layerState& state)
     {
         state.classify();
         layers.shift = interfaceShift(stars, layers, interfaceOnly, promoted, shiftScale);
-        const bool halve = round <= halvingRounds;
-        auto shrunk = [&](label p) { return halve ? 0.5*layers.thickness[p] : 0.0; };
+        const bool shrink = round <= shrinkingRounds;
+        auto shrunk = [&](label p) { return shrink ? shrinkFactor*layers.thickness[p] : 0.0; };
         auto lifted = [&](label t, label p, bool interface)
         {
             if (layers.triangleLayered[t] || layers.nLayers[p] == 0 || stars.isInterface(t) != interface)

@@ -113,7 +113,9 @@ class layers(CaseTest):
         fine surface (its grooves thin them), and HXT's mesh of a partition
         failed the volume contract ("overlapping tets", from the quality
         pass's edge removal) and fell back. Every partition is meshed by
-        hxt at its first attempt, Mesh OK."""
+        hxt at its first attempt, Mesh OK, and at least 99 % of the body's
+        faces carry their layers (99.3 %; 94.5 % when the validity rounds
+        halved the stacks and nothing limited their slope)."""
         helper = bodyInBox(methodName="test_stlNp2")
         helper.cases = self.cases
         c = helper.body_case("sphereInBox.stl")
@@ -130,7 +132,7 @@ class layers(CaseTest):
         s = c.summary()
         self.assertEqual(s["volumeMesherPerRank"], ["hxt", "hxt"])
         self.assertEqual(s["volumeAttemptsPerRank"], [1, 1])
-        self.assertGreater(s["prisms"], 0)
+        self.assertGreaterEqual(s["layers"]["body"]["coverage"], 0.99)
         c.check_mesh(np=2)
 
     def pipe_prisms(self, np):
