@@ -275,14 +275,11 @@ void smoothThickness(const layerStars& stars, std::vector<double>& thickness)
                     if (q != p && thickness[q] > 0)
                     {
                         least = std::min
-                        (
+                        ({
                             least,
-                            std::min
-                            (
-                                maxNeighbourRatio*thickness[q],
-                                thickness[q] + maxThicknessSlope*std::sqrt(magSqr(x[q] - x[p]))
-                            )
-                        );
+                            maxNeighbourRatio*thickness[q],
+                            thickness[q] + maxThicknessSlope*std::sqrt(magSqr(x[q] - x[p]))
+                        });
                     }
                 }
                 return least;
