@@ -203,19 +203,11 @@ void pmsh::balanceAndLog
     const fineBalanceStats stats = balanceFineCells(comm, share);
     volume.nCells = nCells();
     const minAvgMax n = reduceMinAvgMax(comm, double(nCells()));
-    if (stats.layered)
-    {
-        // Its before/after were not measured: no ratio to print
-        Info<< "    prism layers: the fine cells stay in their partitions"
-            << " (balancing a layered mesh is not built yet)\n";
-    }
-    else
-    {
-        Info<< fixed << setprecision(3)
-            << "    largest rank's fine cells over the mean: " << stats.before
-            << " -> " << stats.after << " (" << stats.moved << " cells moved)\n"
-            << defaultfloat;
-    }
+    Info<< fixed << setprecision(3)
+        << "    largest rank's fine cells over the mean: " << stats.before
+        << " -> " << stats.after << " (" << stats.moved << " cells moved"
+        << (share.prisms.empty() ? "" : ", prism stacks whole") << ")\n"
+        << defaultfloat;
     Info << fixed << setprecision(0);
     logPerRank("fine cells", n);
     Info << defaultfloat;
