@@ -17,7 +17,7 @@ import sys
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from foamCase import CaseTest, ROOT, cells_in_checkmesh_log  # noqa: E402
+from foamCase import CaseTest, ROOT, cells_in_checkmesh_log, write_bullet_in_box  # noqa: E402
 
 GEOMETRY = os.path.join(ROOT, "tests", "data", "geometry")
 PATCHES = {"inlet": "patch", "outlet": "patch", "sides": "patch", "body": "wall"}
@@ -349,6 +349,27 @@ class bodyInBox(CaseTest):
 
     def test_needleNeedsTheFoldRepairNp2(self):
         self.needle(2)
+
+    def test_bulletAtTwoRefinementLevelsMeshesWithHxtAtTheFirstAttemptNp2(self):
+        """OpenFOAM's bullet in a box (write_bullet_in_box), maxCellSize
+        0.01, r = 2, hxt, 2 ranks (#37 case 1): partition 1's refined
+        surface overlapped itself and every volume mesher refused it
+        (four attempts, 49 s, then the run stopped). Now 4.0M cells in
+        about 35 s, every partition meshed by hxt at its first attempt,
+        checkMesh -parallel Mesh OK."""
+        c = self.body_case("sphereInBox.stl")
+        write_bullet_in_box(os.path.join(c.dir, "constant", "geometry", "bulletInBox.stl"))
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/bulletInBox.stl"')
+        c.set_entry("system/pmshDict", "maxCellSize", 0.01)
+        c.set_entry("system/pmshDict", "refinementLevels", 2)
+        c.set_entry("system/pmshDict", "volumeMesher", "hxt")
+        _, log = c.run("pmshFoam", np=2)
+        self.assertNotIn("earlier attempts", log)
+        s = c.summary()
+        self.assertEqual(s["volumeMesherPerRank"], ["hxt", "hxt"])
+        self.assertEqual(s["volumeAttemptsPerRank"], [1, 1])
+        text = c.check_mesh(np=2)
+        self.assertGreater(cells_in_checkmesh_log(text), 3000000)
 
     def coarse(self, geometry, **entries):
         """Stage 1 alone (r = 0) on geometry: (coarse cells, log)."""
