@@ -15,6 +15,7 @@
 #include "foamShims.H"
 #include "IStringStream.H"
 #include "layerMeshes.H"
+#include "mixedFaceMatching.H"
 #include "prismFaces.H"
 #include "testMeshes.H"
 #include "testUtilities.H"
