@@ -8,11 +8,16 @@
 #include <limits>
 
 
-pmsh::coarseWallGap::coarseWallGap(const CoarseMesh& coarse, double reach)
+pmsh::coarseWallGap::coarseWallGap
+(
+    const CoarseMesh& coarse,
+    const std::map<label, layerSpecification>& specs,
+    double reach
+)
 :
     points_(coarse.points),
     reach_(reach),
-    triangles_(trianglesOf(coarse)),
+    triangles_(trianglesOf(coarse, specs)),
     grid_(points_, triangles_, reach)
 {}
 
@@ -45,12 +50,51 @@ double pmsh::coarseWallGap::operator()
 }
 
 
-std::vector<pmsh::triVerts> pmsh::coarseWallGap::trianglesOf(const CoarseMesh& coarse)
+std::vector<pmsh::triVerts> pmsh::coarseWallGap::trianglesOf
+(
+    const CoarseMesh& coarse,
+    const std::map<label, layerSpecification>& specs
+)
 {
+    // The box of the layered faces, grown by the reach and by their
+    // longest edge (the fine wall's points are projected off the coarse
+    // faces, by less than an edge)
+    const auto& x = coarse.points;
+    box3 layered{{1, 1, 1}, {-1, -1, -1}};
+    bool any = false;
+    double longest = 0;
+    for (const coarseBoundaryFace& f : coarse.boundary)
+    {
+        if (!specs.count(f.patch)) continue;
+        const box3 b = boxOf(x, f.v);
+        for (int k = 0; k < 3; ++k)
+        {
+            layered.lo[k] = any ? std::min(layered.lo[k], b.lo[k]) : b.lo[k];
+            layered.hi[k] = any ? std::max(layered.hi[k], b.hi[k]) : b.hi[k];
+            longest = std::max(longest, b.hi[k] - b.lo[k]);
+        }
+        any = true;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+        layered.lo[k] -= reach_ + longest;
+        layered.hi[k] += reach_ + longest;
+    }
+    const auto withinReach = [&](const triVerts& f)
+    {
+        return any && boxOf(x, f).overlaps(layered);
+    };
+
     std::vector<triVerts> triangles;
-    for (const coarseBoundaryFace& f : coarse.boundary) triangles.push_back(f.v);
+    for (const coarseBoundaryFace& f : coarse.boundary)
+    {
+        if (withinReach(f.v)) triangles.push_back(f.v);
+    }
     nBoundary_ = triangles.size();
-    for (const coarseZoneFace& f : coarse.zoneFaces) triangles.push_back(f.v);
+    for (const coarseZoneFace& f : coarse.zoneFaces)
+    {
+        if (withinReach(f.v)) triangles.push_back(f.v);
+    }
     return triangles;
 }
 

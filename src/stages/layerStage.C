@@ -87,7 +87,7 @@ wallLayers growLayers
     int refinementLevels
 )
 {
-    const auto gap = std::make_shared<coarseWallGap>(coarse, gapReach(specs));
+    const auto gap = std::make_shared<coarseWallGap>(coarse, specs, gapReach(specs));
     const layerSurface wall
     {
         surface.points, surface.ids, surface.triangles, surface.region, specs,
