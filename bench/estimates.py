@@ -22,7 +22,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "tools"))
-from foamCase import ROOT, TutorialCase, summary, write_bullet_in_box  # noqa: E402
+from foamCase import ROOT, SHIPPED_GEOMETRY, TutorialCase, extent, summary, write_bullet_in_box  # noqa: E402
 
 GEOMETRY = os.path.join(ROOT, "tests", "data", "geometry")
 
@@ -79,10 +79,49 @@ CASES = [
      {"maxCellSize": 0.01, "refinementLevels": 1, "volumeMesher": "hxt"}, {}, None),
     ("bullet netgen 0.02 r1 P2 (5 layers)", "sphereSTL", BULLET, 2,
      {"maxCellSize": 0.02, "refinementLevels": 1, "volumeMesher": "netgen"}, BULLET_LAYERS, None),
+    ("bullet hxt 0.01 r2 P2", "sphereSTL", BULLET, 2,
+     {"maxCellSize": 0.01, "refinementLevels": 2, "volumeMesher": "hxt"}, {}, None),
+] + [
+    # OpenFOAM's shipped surfaces in the dictionary's domain box (as
+    # tests/tutorials/testShippedSurfaces.py): d the surface's extent, the
+    # body at d/20, maxCellSize d/2 and d/4, with and without 3 layers
+    ("%s hxt d/%d r1 P2%s" % (name, divisor, " (3 layers)" if layered else ""), "sphereSTL",
+     (surface, divisor, layered), 2, {"refinementLevels": 1, "volumeMesher": "hxt"}, {}, None)
+    for name, surface in (("blob", "blob.stl.gz"), ("flange", "flange.stl.gz"),
+                          ("DTC hull", "DTC-scaled.stl.gz"))
+    for divisor in (2, 4) for layered in (False, True)
 ]
 
 
+def shipped_case(tutorial, surface, divisor, layered):
+    """A shipped surface in a domain box one extent d beyond it: the box's
+    patch farfield, the body's walls at d/20, maxCellSize d/divisor"""
+    c = TutorialCase(tutorial)
+    source = os.path.join(SHIPPED_GEOMETRY, surface)
+    lo, hi = extent(source)
+    d = max(h - l for l, h in zip(lo, hi))
+    shutil.copy(source, os.path.join(c.dir, "constant", "geometry", surface))
+    shutil.rmtree(os.path.join(c.dir, "0"), ignore_errors=True)
+    c.set_entry("system/pmshDict", "geometry", '"constant/geometry/%s"' % surface)
+    c.set_entry("system/pmshDict", "maxCellSize", d / divisor)
+    c.set_entry("system/pmshDict", "domain",
+                "{ type box; min (%s); max (%s); patches { default farfield; } }"
+                % (" ".join("%r" % (x - d) for x in lo), " ".join("%r" % (x + d) for x in hi)))
+    layers = "layers 3; firstLayerThickness %r; " % (d / 2000) if layered else ""
+    c.substitute("system/pmshDict", r"(?ms)^patches\s*\{.*?^\}",
+                 "patches\n{\n    farfield { type patch; }\n"
+                 "    \".*\" { type wall; maxCellSize %r; %s}\n}" % (d / 20, layers))
+    if surface.startswith("DTC"):
+        c.set_entry("system/pmshDict", "coarseSurface", "remesh")
+    return c
+
+
 def make_case(tutorial, geometry, entries, patch_sizes, regions):
+    if isinstance(geometry, tuple):
+        c = shipped_case(tutorial, *geometry)
+        for key, value in entries.items():
+            c.set_entry("system/pmshDict", key, value)
+        return c
     c = TutorialCase(tutorial)
     if geometry == BULLET:
         write_bullet_in_box(os.path.join(c.dir, "constant", "geometry", geometry))

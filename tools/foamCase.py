@@ -156,6 +156,23 @@ def check_mesh(case, ranks=1, env=None):
         return read_check_mesh(f.read())
 
 
+# The surfaces OpenFOAM ships (Debian's openfoam-examples)
+SHIPPED_GEOMETRY = "/usr/share/doc/openfoam-examples/examples/resources/geometry"
+
+
+def extent(path):
+    """The bounding box of an (optionally gzipped) STL or OBJ file"""
+    lo, hi = [1e300]*3, [-1e300]*3
+    with (gzip.open if path.endswith(".gz") else open)(path, "rt", errors="replace") as f:
+        for line in f:
+            t = line.split()
+            if t and t[0] in ("v", "vertex"):
+                x = [float(a) for a in t[1:4]]
+                lo = [min(a, b) for a, b in zip(lo, x)]
+                hi = [max(a, b) for a, b in zip(hi, x)]
+    return lo, hi
+
+
 def write_bullet_in_box(path):
     """OpenFOAM's bullet (tutorials/resources/geometry/bullet.stl.gz of
     the OpenFOAM source the build uses), its triangles flipped to point out

@@ -1,6 +1,7 @@
 #include "fineMeshForecast.H"
 #include "failTogether.H"
 #include "fineCellWeights.H"
+#include "sizeFieldCells.H"
 
 #include <cmath>
 
@@ -14,7 +15,7 @@ pmsh::fineMeshForecast pmsh::forecastFineMesh
 )
 {
     fineMeshForecast forecast;
-    fineCellWeightTerms weightTerms;
+    sizeFieldTerms terms;
     failTogether(comm, [&]
     {
         if (comm.master())
@@ -22,36 +23,29 @@ pmsh::fineMeshForecast pmsh::forecastFineMesh
             forecast.fineWeights = fineCellWeights
             (
                 coarse, settings.maxCellSize, settings.refinementLevels,
-                settings.refinementRegions, &weightTerms
+                settings.refinementRegions
+            );
+            terms = sizeFieldCells
+            (
+                coarse, settings.maxCellSize, settings.grading,
+                settings.refinementLevels, settings.refinementRegions, layerSpecs
             );
         }
     });
     failTogether(comm, [&]
     {
-        // The sizes of the cells graded from a small body to
-        // maxCellSize count more than the partition's weights say
-        const double weightSum = comm.sum
-        (
-            weightTerms.volumeGraded + weightTerms.regionsGraded
-          + weightTerms.boundary
-        );
-
         // Stop before the expensive stages if the fine mesh cannot fit
+        const double weighted = comm.sum(terms.weighted());
         memoryEstimate& estimate = forecast.estimate;
         estimate = estimateAndCheckMemory
         (
-            comm, settings, coarse.nCells(),
-            weightSum*std::pow(8.0, settings.refinementLevels),
+            comm, settings, coarse.nCells(), weighted,
             expectedPrisms(coarse, layerSpecs, settings.refinementLevels), checkMemory
         );
-        const double termSum =
-            weightTerms.volumeGraded + weightTerms.regionsGraded
-          + weightTerms.boundary;
-        if (termSum > 0)
+        if (weighted > 0)
         {
-            estimate.volumeShare = weightTerms.volumeGraded/termSum;
-            estimate.regionShare = weightTerms.regionsGraded/termSum;
-            estimate.boundaryShare = weightTerms.boundary/termSum;
+            estimate.interfaceShare = comm.sum(terms.coarseShare*terms.coarse)/weighted;
+            estimate.sizeFieldShare = 1 - estimate.interfaceShare;
         }
     });
     return forecast;

@@ -29,18 +29,14 @@
       sphereSTL  hxt    hxt    3  2    599    290405   4.835    158   113   135
       sphereSTL  hxt    hxt    4  1    626   2394048   5.137    131   114   413
 
-  "fine/weighted" is fine cells over weightedFineCells: the factor of the
-  volume and coarse meshers. Netgen's stays within 3.7-5.4; HXT fills the
-  shaft's thin journal about twice as densely as the spheres (its size cap
-  does not hold there), so its factor spans 4.8-13.2 and an HXT estimate
-  can be 2x low on such a geometry (the check refuses on the least, which
-  stays below every measured run). "B/cell >base" is the largest rank's
+  "fine/weighted" is fine cells over the weights of fineCellWeights.H, by
+  which the estimate once counted; it now counts from the fine size field
+  (sizeFieldCells.H, below). "B/cell >base" is the largest rank's
   peak above the stage-1 base per fine cell of that rank: Netgen's volume
-  mesher holds 2-4 times what HXT's does. Each pair of meshers gets about
-  its mean factor as expected and, as least, a figure below every measured
-  one; the bytes per
-  cell likewise (from the runs of 100k cells or more, where the base does
-  not hide them).
+  mesher holds 2-4 times what HXT's does. Each mesher gets about its mean
+  figure as expected and, as least, a figure below every measured one
+  (from the runs of 100k cells or more, where the base does not hide
+  them).
 \*---------------------------------------------------------------------------*/
 
 #include "memoryEstimate.H"
@@ -79,17 +75,17 @@ struct mesherFigures
     double leastBytesPerCell;
 };
 
-// Fine cells per weightedFineCells recalibrated on the ~20 cases of
-// bench/results/estimates.md (graded volume and region terms): Netgen
-// makes 0.6-1.2 of 4.8 a weight, from bodies in boxes at r = 1 to the
-// tutorials at r = 2, so 5.8 puts both within 0.67-1.5; the least figures
-// are below every run there (Netgen 4.1, HXT 4.7 at the most)
+// Tets per sizeFieldTerms::weighted(), fitted on the first 26 cases of
+// bench/results/estimates.md (tutorials, bodies in boxes, patch and region
+// sizes, layers, r = 1..3): Netgen made 1.9-3.7, HXT 2.3-4.2; 2.8 and 3.4
+// put every case within 0.67-1.5, high rather than low (all 39 now:
+// 0.74-1.43). The least figures are below every run there.
 const mesherFigures figures[] =
 {
-    {"netgen", "netgen", 5.8, 3.0, 400, 120},
-    {"netgen", "hxt", 5.0, 2.6, 400, 120},
-    {"hxt", "netgen", 7.0, 4.0, 150, 100},
-    {"hxt", "hxt", 7.0, 4.0, 150, 100}
+    {"netgen", "netgen", 2.8, 1.8, 400, 120},
+    {"netgen", "hxt", 2.8, 1.8, 400, 120},
+    {"hxt", "netgen", 3.4, 2.2, 150, 100},
+    {"hxt", "hxt", 3.4, 2.2, 150, 100}
 };
 
 //- The largest rank's share of the fine cells: the partition balances

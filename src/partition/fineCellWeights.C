@@ -23,11 +23,9 @@ std::vector<double> pmsh::fineCellWeights
     const CoarseMesh& coarse,
     double maxCellSize,
     int refinementLevels,
-    const std::vector<sizeRegion>& regions,
-    fineCellWeightTerms* terms
+    const std::vector<sizeRegion>& regions
 )
 {
-    fineCellWeightTerms sums;
     const label nPoints = coarse.nPoints();
     const label nCells = coarse.nCells();
     const double H = maxCellSize;
@@ -89,13 +87,6 @@ std::vector<double> pmsh::fineCellWeights
         if (regionSize < H)
         {
             weights[c] = std::max(weights[c], 2*volume/(h*h*h));
-            sums.regions += weights[c];
-            sums.regionsGraded += volume/(regionSize*h*h);
-        }
-        else
-        {
-            sums.volume += weights[c];
-            sums.volumeGraded += volume/(H*h*h);
         }
     }
 
@@ -121,13 +112,7 @@ std::vector<double> pmsh::fineCellWeights
                + distance(x[f[2]], x[f[0]]))/3
             );
             weights[c] += beta*area/(h*h);
-            sums.boundary += beta*area/(h*h);
         }
-    }
-
-    if (terms)
-    {
-        *terms = sums;
     }
 
     // Never zero: every cell gives some fine cells (and metis divides by

@@ -277,9 +277,8 @@ void writeSummaryJson
         << "  \"estimatedPrisms\": " << estimate.prisms << ",\n"
         << "  \"estimatedCellsPerWeighted\": " << estimate.cellsPerWeighted << ",\n"
         << "  \"estimatedFineCellsLargestRank\": " << estimate.fineCellsPerRank << ",\n"
-        << "  \"estimateShares\": {\"volume\": " << estimate.volumeShare
-        << ", \"regions\": " << estimate.regionShare << ", \"boundary\": "
-        << estimate.boundaryShare << "},\n"
+        << "  \"estimateShares\": {\"sizeField\": " << estimate.sizeFieldShare
+        << ", \"interfaces\": " << estimate.interfaceShare << "},\n"
         << "  \"estimatedPeakMemoryPerRankBytes\": " << estimate.bytesPerRank << ",\n"
         << "  \"prisms\": " << layers.prisms << ",\n"
         << "  \"layers\": {";

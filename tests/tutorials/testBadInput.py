@@ -591,8 +591,8 @@ class badInput(BadInputTest, cases):
         self.assertNotIn("Stage 3", log, "the memory check came too late")
 
     def test_threeBillionCellsStopAtTheLabelsOrTheMemoryAfterTheCoarseMesh(self):
-        # 7 levels of the sphere at maxCellSize 0.21: some 2.4 billion
-        # cells, 4.7 billion faces. 32-bit labels cannot hold them: the label stop,
+        # 7 levels of the sphere at maxCellSize 0.21: some 3 billion cells
+        # (expected 3.4), 6 billion faces. 32-bit labels cannot hold them: the label stop,
         # before the partition. 64-bit labels can: on to the memory check,
         # which refuses them on this machine
         c = self.case("sphere", refinementLevels=7, maxCellSize=0.21)
@@ -605,7 +605,7 @@ class badInput(BadInputTest, cases):
             log = self.expect_fatal(c, ["Entry 'refinementLevels'",
                                         "cannot fit in the memory"])
             self.assertNotIn("-bit labels", log)
-        self.assertIn("expected fine cells: 2.35e+09", log)
+        self.assertIn("expected fine cells: 3.4e+09", log)
         self.assertNotIn("Stage 2", log, "the label or memory check came too late")
 
     # -- case files -------------------------------------------------------

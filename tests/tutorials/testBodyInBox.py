@@ -110,8 +110,9 @@ class bodyInBox(CaseTest):
             self.assertGreaterEqual(ratio, 0.67)
             self.assertLessEqual(ratio, 1.5)
         shares = summary["estimateShares"]
-        self.assertAlmostEqual(shares["volume"] + shares["regions"] + shares["boundary"], 1, 6)
-        self.assertGreater(shares["boundary"], 0)
+        self.assertAlmostEqual(shares["sizeField"] + shares["interfaces"], 1, 6)
+        self.assertGreater(shares["sizeField"], 0)
+        self.assertGreater(shares["interfaces"], 0)
         self.assertIn("pointsOffGeometry", summary)
         self.assertIn("maxDistanceOffGeometry", summary)
         # Far below the body's radius (0.5) and the fine cells (~0.3 here)

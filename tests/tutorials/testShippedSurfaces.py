@@ -10,7 +10,6 @@ d beyond the body on every side.
 Run one test:  python3 testShippedSurfaces.py shippedSurfaces.test_flangeNp2
 """
 
-import gzip
 import os
 import re
 import shutil
@@ -18,23 +17,7 @@ import sys
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from foamCase import CaseTest, cells_in_checkmesh_log  # noqa: E402
-
-SHIPPED = "/usr/share/doc/openfoam-examples/examples/resources/geometry"
-
-
-def extent(path):
-    """The bounding box of an (optionally gzipped) STL or OBJ file"""
-    lo, hi = [1e300]*3, [-1e300]*3
-    with (gzip.open if path.endswith(".gz") else open)(path, "rt", errors="replace") as f:
-        for line in f:
-            t = line.split()
-            if t and t[0] in ("v", "vertex"):
-                x = [float(a) for a in t[1:4]]
-                lo = [min(a, b) for a, b in zip(lo, x)]
-                hi = [max(a, b) for a, b in zip(hi, x)]
-    return lo, hi
-
+from foamCase import SHIPPED_GEOMETRY as SHIPPED, CaseTest, cells_in_checkmesh_log, extent  # noqa: E402
 
 class shippedSurfaces(CaseTest):
 
