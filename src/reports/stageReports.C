@@ -203,10 +203,12 @@ void pmsh::balanceAndLog
     const fineBalanceStats stats = balanceFineCells(comm, share);
     volume.nCells = nCells();
     const minAvgMax n = reduceMinAvgMax(comm, double(nCells()));
+    // Layered when any rank has prisms (the master may hold none)
+    const bool layered = comm.sum(std::int64_t(share.prisms.size())) > 0;
     Info<< fixed << setprecision(3)
         << "    largest rank's fine cells over the mean: " << stats.before
         << " -> " << stats.after << " (" << stats.moved << " cells moved"
-        << (share.prisms.empty() ? "" : ", prism stacks whole") << ")\n"
+        << (layered ? ", prism stacks whole" : "") << ")\n"
         << defaultfloat;
     Info << fixed << setprecision(0);
     logPerRank("fine cells", n);
