@@ -8,13 +8,6 @@ namespace
 
 using namespace pmsh;
 
-double distance(const point3& a, const point3& b)
-{
-    return std::sqrt(magSqr(b - a));
-}
-
-const int tetEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-
 // The coarse points' neighbours along the tets' edges, each edge once per
 // tet holding it (a shortest-path search does not mind the repeats): the
 // neighbours of point v are neighbour[first[v] .. first[v + 1]), 48 bytes

@@ -3,21 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-namespace
-{
-
-using namespace pmsh;
-
-double distance(const point3& a, const point3& b)
-{
-    return std::sqrt(magSqr(b - a));
-}
-
-const int tetEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-
-} // End anonymous namespace
-
-
 std::vector<double> pmsh::fineCellWeights
 (
     const CoarseMesh& coarse,
