@@ -154,12 +154,14 @@ public:
             : mesh_.quadRegion[id - ids.quadsStart];
     }
 
-    //- Across cell face id: a boundary face on the interface with a rank
-    bool onInterface(faceId id) const
+    //- The rank behind cell face id (a boundary face on the interface
+    //  with it), or -1
+    int rankAcross(faceId id) const
     {
         const faceId other = across[id];
-        return other >= ids.nCellFaces && other != noFace
-            && isInterfaceRegion(regionOf(other));
+        if (other < ids.nCellFaces || other == noFace) return -1;
+        const label r = regionOf(other);
+        return isInterfaceRegion(r) ? int(interfaceNeighbour(r)) : -1;
     }
 
     //- A face's key by the global ids of its points
@@ -259,11 +261,7 @@ std::vector<int> cellDestinations
         };
         for (faceId id = 0; id < ids.nCellFaces; ++id)
         {
-            if
-            (
-                faces.onInterface(id)
-             && faces.regionOf(faces.across[id]) == interfaceRegion(s)
-            )
+            if (faces.rankAcross(id) == s)
             {
                 enqueue(units.unitOf[ids.cellOf(id)]);
             }
@@ -305,9 +303,9 @@ std::map<processorKey, int> destinationsAcross
     std::vector<std::vector<faceDestination>> tell(comm.size());
     for (faceId id = 0; id < faces.ids.nCellFaces; ++id)
     {
-        if (faces.onInterface(id))
+        const int s = faces.rankAcross(id);
+        if (s >= 0)
         {
-            const int s = int(interfaceNeighbour(faces.regionOf(faces.across[id])));
             tell[s].push_back({faces.keyOf(id), dest[faces.ids.cellOf(id)]});
         }
     }
@@ -606,11 +604,6 @@ std::int64_t assembleMovedMesh
     return nReceived;
 }
 
-} // End anonymous namespace
-
-
-namespace
-{
 
 // One round of moves towards the flows of the current loads; returns the
 // cells this rank received
