@@ -60,7 +60,8 @@ std::vector<pmsh::triVerts> pmsh::coarseWallGap::trianglesOf
     // longest edge (the fine wall's points are projected off the coarse
     // faces, by less than an edge)
     const auto& x = coarse.points;
-    box3 layered{{1, 1, 1}, {-1, -1, -1}};
+    constexpr double huge = std::numeric_limits<double>::max();
+    box3 layered{{huge, huge, huge}, {-huge, -huge, -huge}};
     bool any = false;
     double longest = 0;
     for (const coarseBoundaryFace& f : coarse.boundary)
@@ -69,8 +70,8 @@ std::vector<pmsh::triVerts> pmsh::coarseWallGap::trianglesOf
         const box3 b = boxOf(x, f.v);
         for (int k = 0; k < 3; ++k)
         {
-            layered.lo[k] = any ? std::min(layered.lo[k], b.lo[k]) : b.lo[k];
-            layered.hi[k] = any ? std::max(layered.hi[k], b.hi[k]) : b.hi[k];
+            layered.lo[k] = std::min(layered.lo[k], b.lo[k]);
+            layered.hi[k] = std::max(layered.hi[k], b.hi[k]);
             longest = std::max(longest, b.hi[k] - b.lo[k]);
         }
         any = true;
