@@ -333,9 +333,10 @@ void logLayerReport(const layerReport& report)
             << "      " << r.thickness[0] << " / " << r.thickness[1] << " / "
             << r.thickness[2] << setprecision(6) << nl;
     }
-    Info<< "    prisms: " << label(report.prisms) << "; points thinned at sharp edges "
+    Info<< "    prisms: " << label(report.prisms) << "; noisy directions smoothed at "
+        << report.thinned.nSmoothedDirections << " points; points thinned at sharp edges "
         << report.thinned.nFeatureLimited << ", by gaps " << report.thinned.nGapLimited
-        << ", for valid prisms " << report.thinned.nInvalidLimited
+        << ", for valid prisms and tops " << report.thinned.nInvalidLimited
         << " (partition interfaces " << report.thinned.nInterfaceLimited << ") in "
         << report.thinned.nRounds << " rounds" << endl;
 }
@@ -368,6 +369,7 @@ layerReport reportLayers
     for (const counts& c : comm.allGather(counts{double(layers.prisms.size()), layers.stats}))
     {
         report.prisms += c.prisms;
+        report.thinned.nSmoothedDirections += c.stats.nSmoothedDirections;
         report.thinned.nFeatureLimited += c.stats.nFeatureLimited;
         report.thinned.nGapLimited += c.stats.nGapLimited;
         report.thinned.nInvalidLimited += c.stats.nInvalidLimited;

@@ -126,7 +126,10 @@ class layers(CaseTest):
         pass's edge removal) and fell back. Every partition is meshed by
         hxt at its first attempt, Mesh OK, and at least 99 % of the body's
         faces carry their layers (99.3 %; 94.5 % when the validity rounds
-        halved the stacks and nothing limited their slope)."""
+        halved the stacks and nothing limited their slope). Fewer than 200
+        faces above 70 degrees (25): the STL's noisy normals crumpled the
+        tops of the stacks, and HXT could not mend the tets against them
+        (2,113 faces, and 47 s in its optimiser)."""
         helper = bodyInBox(methodName="test_stlNp2")
         helper.cases = self.cases
         c = helper.body_case("sphereInBox.stl")
@@ -144,7 +147,9 @@ class layers(CaseTest):
         self.assertEqual(s["volumeMesherPerRank"], ["hxt", "hxt"])
         self.assertEqual(s["volumeAttemptsPerRank"], [1, 1])
         self.assertGreaterEqual(s["layers"]["body"]["coverage"], 0.99)
-        c.check_mesh(np=2)
+        text = c.check_mesh(np=2)
+        severe = re.search(r"severely non-orthogonal \(> 70 degrees\) faces: (\d+)", text)
+        self.assertLess(int(severe.group(1)) if severe else 0, 200, text[-3000:])
 
     def pipe_prisms(self, np):
         c = self.case("pipe", refinementLevels=1)
