@@ -76,7 +76,7 @@ std::vector<vector3> starMeans
     (
         [&](label t, label, label& tag, vector3& value)
         {
-            if (stars.isInterface(t) || !stars.specOf(t)) return false;
+            if (!stars.specOf(t)) return false;
             tag = layeredTag;
             value = vector3{0, 0, 0};
             for (const label q : stars.surface().triangles[t])
@@ -95,13 +95,15 @@ std::vector<vector3> starMeans
 }
 
 
-//- The points whose directions are noisy (noisyShare), and the points of
-//  their stars, on every rank alike; never a feature point.
+//- The points whose directions are noisy (noisyShare), given the means
+//  of their stars (starMeans), and the points of their stars, on every
+//  rank alike; never a feature point.
 std::vector<bool> noisyStars
 (
     const layerStars& stars,
     const std::vector<bool>& feature,
-    const std::vector<vector3>& direction
+    const std::vector<vector3>& direction,
+    const std::vector<vector3>& mean
 )
 {
     const auto& x = stars.surface().points;
@@ -113,18 +115,14 @@ std::vector<bool> noisyStars
         {
             double least = layerStars::none;
             const layerSpecification* spec = stars.specOf(t);
-            if (!spec || stars.isInterface(t)) return least;
+            if (!spec) return least;
             for (const label q : triangles[t])
             {
-                if (q != p)
-                {
-                    least = std::min(least, std::sqrt(magSqr(x[q] - x[p]))/spec->totalThickness());
-                }
+                if (q != p) least = std::min(least, distance(x[p], x[q])/spec->totalThickness());
             }
             return least;
         }
     );
-    const std::vector<vector3> mean = starMeans(stars, feature, direction);
     std::vector<bool> noisy(direction.size(), false);
     for (std::size_t p = 0; p < direction.size(); ++p)
     {
@@ -135,7 +133,7 @@ std::vector<bool> noisyStars
     (
         [&](label t, label)
         {
-            if (!stars.specOf(t) || stars.isInterface(t)) return layerStars::none;
+            if (!stars.specOf(t)) return layerStars::none;
             for (const label q : triangles[t])
             {
                 if (noisy[q]) return -1.0;
@@ -191,7 +189,8 @@ std::vector<vector3> layerDirections
     }
 
     // Noisy directions smoothed; directions that slide stay in their planes
-    std::vector<bool> smoothed = noisyStars(stars, feature, direction);
+    std::vector<vector3> mean = starMeans(stars, feature, direction);
+    std::vector<bool> smoothed = noisyStars(stars, feature, direction, mean);
     for (label p = 0; p < nPoints; ++p)
     {
         smoothed[p] = smoothed[p] && !slides[p];
@@ -201,7 +200,7 @@ std::vector<vector3> layerDirections
     {
         for (int pass = 0; pass < smoothingPasses; ++pass)
         {
-            const std::vector<vector3> mean = starMeans(stars, feature, direction);
+            if (pass > 0) mean = starMeans(stars, feature, direction);
             for (label p = 0; p < nPoints; ++p)
             {
                 if (smoothed[p] && magSqr(mean[p]) > 0) direction[p] = mean[p];

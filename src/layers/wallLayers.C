@@ -252,7 +252,7 @@ std::vector<double> featureAndGapThickness
     };
     const std::vector<double> shortestEdge = overNeighbours
     (
-        [&](label p, label q) { return std::sqrt(magSqr(x[q] - x[p])); }
+        [&](label p, label q) { return distance(x[p], x[q]); }
     );
     const std::vector<double> convexity = overNeighbours
     (
@@ -315,7 +315,7 @@ void smoothThickness(const layerStars& stars, std::vector<double>& thickness)
                         ({
                             least,
                             maxNeighbourRatio*thickness[q],
-                            thickness[q] + maxThicknessSlope*std::sqrt(magSqr(x[q] - x[p]))
+                            thickness[q] + maxThicknessSlope*distance(x[p], x[q])
                         });
                     }
                 }
