@@ -1,4 +1,5 @@
 #include "fineCellBalance.H"
+#include "failTogether.H"
 #include "meshPatch.H"
 #include "pmshError.H"
 #include "mixedFaceMatching.H"
@@ -359,7 +360,20 @@ public:
             {
                 return r;   // a physical patch
             }
-            d = destAcross_.at(faces_.keyOf(other));
+            const auto it = destAcross_.find(faces_.keyOf(other));
+            if (it == destAcross_.end())
+            {
+                throw FatalError
+                (
+                    msg() << "A processor face of cell " << c << " toward rank "
+                        << faces_.rankAcross(other) << " has no match there:"
+                        " the ranks' meshes disagree before the balance (a bug;"
+                        " the decomposition method in system/decomposeParDict"
+                        " may avoid it)",
+                    "pmsh::balanceFineCells"
+                );
+            }
+            d = it->second;
         }
         return d == dest_[c] ? internalFace : interfaceRegion(d);
     }
@@ -632,10 +646,16 @@ std::int64_t balanceRound
     // Zoned when any rank is: a rank may have received no zoned cell yet
     const bool zoned =
         comm.sum(std::int64_t(!mesh.tetZone.empty() || !mesh.prismZone.empty())) > 0;
-    packedMove move = packMovedCells
-    (
-        mesh, dest, acrossAfterMove(faces, dest, destAcross), me, comm.size()
-    );
+    // Local work between collectives: a rank that threw here would leave
+    // the others waiting in the exchange
+    packedMove move;
+    failTogether(comm, [&]
+    {
+        move = packMovedCells
+        (
+            mesh, dest, acrossAfterMove(faces, dest, destAcross), me, comm.size()
+        );
+    });
     std::vector<std::vector<movedTet>> receivedTets = comm.exchange(move.tets);
     freeStorage(move.tets);
     std::vector<std::vector<movedPrism>> receivedPrisms = comm.exchange(move.prisms);

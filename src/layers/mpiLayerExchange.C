@@ -272,3 +272,9 @@ bool pmsh::mpiLayerExchange::anyRank(bool local)
 {
     return comm_.any(local);
 }
+
+
+int pmsh::mpiLayerExchange::rank() const
+{
+    return comm_.rank();
+}

@@ -509,11 +509,15 @@ void validityRounds(layerState& state)
 
 //- What a stack meets across a partition interface on its edge (u, v),
 //  by the interface triangle n there: the other part's boundary triangle
-//  on that edge. Its stack, if it has one (the side quads are processor
-//  faces, matched by the other part's quads); else its region (the stack
-//  ends at an unlayered triangle, whose region the quads take, as on one
-//  rank). The boundary triangles round the interface's points come from
-//  every rank that holds them (stars.gather).
+//  on that edge. Its stack, if it has one: the side quads are processor
+//  faces toward the part that holds that triangle, matched by its quads.
+//  That part need not be the one across n: a third part may touch the
+//  edge between the two, and its tets end at the stacks' tops (a
+//  hierarchical split of a layered bullet at P = 4 had 20 side quads
+//  facing a part that had made none). Else the triangle's region: the
+//  stack ends at an unlayered triangle, whose region the quads take, as
+//  on one rank. The boundary triangles round the interface's points come
+//  from every rank that holds them (stars.gather).
 class acrossInterface
 {
 public:
@@ -529,7 +533,12 @@ public:
                 {
                     if (stars.isInterface(t)) return false;
                     tag = surface_.region[t];
-                    value = {layers.triangleLayered[t] ? 1.0 : 0.0, 0, 0};
+                    value =
+                    {
+                        layers.triangleLayered[t] ? 1.0 : 0.0,
+                        double(interfaceRegion(stars.rank())),
+                        0
+                    };
                     return true;
                 }
             )
@@ -537,7 +546,8 @@ public:
     {}
 
     //- The region of the quads of layered t on edge (u, v), whose other
-    //  triangle here is the interface triangle n.
+    //  triangle here is the interface triangle n (when no rank holds a
+    //  boundary triangle across the edge, n's region).
     label region(label t, label u, label v, label n) const
     {
         const auto& ids = surface_.ids;
@@ -550,7 +560,7 @@ public:
                 std::is_permutation(c.key.begin(), c.key.end(), triangleKey{ids[f[0]], ids[f[1]], ids[f[2]]}.begin());
             if (onEdge && !mine)
             {
-                return c.value[0] > 0 ? surface_.region[n] : c.tag;
+                return c.value[0] > 0 ? label(c.value[1]) : c.tag;
             }
         }
         return surface_.region[n];

@@ -767,6 +767,8 @@ public:
             return any;
         }
 
+        int rank() const override { return rank_; }
+
     private:
 
         threadExchange& board_;
@@ -876,7 +878,9 @@ struct layerBits
 
 //- The pipe `whole` split at z = H/2, each part closed by a disc of
 //  nRings rings (partition interface), and the layers grown on both parts
-//  at once, one thread each.
+//  at once, one thread each. The lower part's disc faces rank
+//  lowerDiscFaces (1, the upper part, unless a test wants another part
+//  there).
 void growInTwoParts
 (
     testSurface whole,
@@ -886,7 +890,8 @@ void growInTwoParts
     const std::map<label, layerSpecification>& specs,
     const std::function<double(const point3&, const vector3&, double)>& gap,
     testSurface parts[2],
-    wallLayers split[2]
+    wallLayers split[2],
+    int lowerDiscFaces = 1
 )
 {
     const double R = std::hypot(whole.points[0][0], whole.points[0][1]);
@@ -898,7 +903,7 @@ void growInTwoParts
         (z < 1.5*H ? lower : upper).push_back(t);
     }
     const label nWhole = whole.triangles.size();
-    addDisc(whole, R, H/2, nTheta, nRings, interfaceRegion(1), {0, 0, 1});
+    addDisc(whole, R, H/2, nTheta, nRings, interfaceRegion(lowerDiscFaces), {0, 0, 1});
     const label nDisc = label(whole.triangles.size()) - nWhole;
     for (label t = nWhole; t < nWhole + nDisc; ++t) lower.push_back(t);
     addDisc(whole, R, H/2, nTheta, nRings, interfaceRegion(0), {0, 0, -1});
@@ -997,6 +1002,31 @@ TEST(wallLayers, twoPartsGiveTheOnePartLayersBitForBit)
     }
     EXPECT_EQ(nShared, 2*nTheta);
     EXPECT_EQ(prisms, oneBits.prisms);
+}
+
+
+TEST(wallLayers, sideQuadsBetweenTwoPartsStacksFaceTheOtherStacksPartWhenAThirdPartTouchesTheirEdge)
+{
+    // The lower part's interface at the rim faces a third part (rank 2,
+    // which holds no wall there), as where three parts meet on a wall
+    // edge: the stacks on both sides of the rim still meet each other, so
+    // their side quads are processor faces between parts 0 and 1, which
+    // both make, not toward the part across the lower part's interface
+    const int nTheta = 24, nZ = 12, nRings = 2;
+    const double H = 2;
+    const testSurface whole = pipe(0.5, H, nTheta, nZ);
+    const std::map<label, layerSpecification> specs{{0, spec(4, 0.02, 1.3)}};
+    testSurface parts[2];
+    wallLayers split[2];
+    growInTwoParts(whole, H, nTheta, nRings, specs, nullptr, parts, split, 2);
+
+    for (int r = 0; r < 2; ++r)
+    {
+        std::map<label, label> quadsPerRegion;
+        for (const layerSideFace& f : split[r].sideFaces) ++quadsPerRegion[f.region];
+        EXPECT_EQ(quadsPerRegion[interfaceRegion(1 - r)], 4*nTheta) << "part " << r;
+        EXPECT_EQ(quadsPerRegion.count(interfaceRegion(2)), 0u) << "part " << r;
+    }
 }
 
 
