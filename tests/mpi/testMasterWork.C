@@ -96,3 +96,30 @@ TEST(masterWork, aFailureOnTheMasterStopsEveryRankTogether)
     EXPECT_TRUE(stopped);
     EXPECT_TRUE(comm.all(stopped));
 }
+
+
+// Run alone, at 2 ranks (tests/CMakeLists.txt: failTogetherAbort.np2):
+// success is the run aborting with both errors, not this test passing
+TEST(failTogetherAbort, aRankThatFailsWhileTheOthersWaitForItInAnExchangeAbortsTheRun)
+{
+    const Communicator& comm = test::world();
+    if (!comm.parallel())
+    {
+        GTEST_SKIP() << "needs 2 ranks";
+    }
+    failTogether
+    (
+        comm,
+        [&]
+        {
+            if (comm.rank() == 1)
+            {
+                throw FatalError("rank 1's work failed", "test");
+            }
+            // The others wait for rank 1 in an exchange it never joins
+            comm.exchange(std::vector<std::vector<int>>(comm.size()));
+        },
+        2
+    );
+    ADD_FAILURE() << "rank " << comm.rank() << " went on: the run was not aborted";
+}
