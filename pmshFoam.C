@@ -129,6 +129,7 @@ static pmsh::wallLayers layerStage
     const pmsh::FineSurface& surface,
     const std::map<pmsh::label, pmsh::layerSpecification>& specs,
     const pmsh::meshSettings& settings,
+    const std::string& caseDir,
     pmsh::layerReport& report
 )
 {
@@ -146,6 +147,10 @@ static pmsh::wallLayers layerStage
         );
     });
     report = pmsh::reportLayers(comm, layers, surface, coarse, specs);
+    pmsh::writeThinnedLayers
+    (
+        comm, layers, surface, caseDir + "/postProcessing/pmshFoam/thinnedLayers.vtk"
+    );
     stages.end();
     return layers;
 }
@@ -245,11 +250,7 @@ static void meshCase
 
     pmsh::stageLog stages(comm);
 
-    stages.begin
-    (
-        "coarse",
-        coarseStageTitle(settings, *inputs.geometry)
-    );
+    stages.begin("coarse", coarseStageTitle(settings, *inputs.geometry));
     pmsh::CoarseMesh coarse = pmsh::generateCoarseMesh
     (
         comm, *inputs.geometry, pmsh::coarseParameters(settings, runTime.globalPath())
@@ -298,8 +299,11 @@ static void meshCase
     stages.end();
 
     pmsh::layerReport layerReport;
-    const pmsh::wallLayers layers =
-        layerStage(comm, stages, coarse, cellPart, surface, layerSpecs, settings, layerReport);
+    const pmsh::wallLayers layers = layerStage
+    (
+        comm, stages, coarse, cellPart, surface, layerSpecs, settings,
+        runTime.globalPath(), layerReport
+    );
 
     stages.begin("volume", "Stage 4: volume meshing (" + settings.volumeMesher + ")");
     pmsh::partitionVolumeResult volume;

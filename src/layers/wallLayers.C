@@ -226,7 +226,8 @@ std::vector<double> featureAndGapThickness
     const std::vector<vector3>& direction,
     const std::vector<const layerSpecification*>& pointSpec,
     const std::vector<bool>& feature,
-    wallLayerStats& stats
+    wallLayerStats& stats,
+    std::vector<layerThinning>& thinnedBy
 )
 {
     const layerSurface& surface = stars.surface();
@@ -276,6 +277,7 @@ std::vector<double> featureAndGapThickness
             {
                 T = limit;
                 ++stats.nFeatureLimited;
+                thinnedBy[p] = layerThinning::sharpEdge;
             }
         }
 
@@ -286,6 +288,7 @@ std::vector<double> featureAndGapThickness
             {
                 T = spec.maxThicknessToGapRatio*gap;
                 ++stats.nGapLimited;
+                thinnedBy[p] = layerThinning::gap;
             }
         }
         thickness[p] = T;
@@ -501,6 +504,11 @@ void validityRounds(layerState& state)
         smoothThickness(stars, layers.thickness);
         state.dropThinStacks();
     }
+    for (label p = 0; p < nPoints; ++p)
+    {
+        if (interfaceLimited[p]) layers.thinnedBy[p] = layerThinning::partitionInterface;
+        else if (limited[p]) layers.thinnedBy[p] = layerThinning::validity;
+    }
     layers.stats.nInvalidLimited = std::count(limited.begin(), limited.end(), true);
     layers.stats.nInterfaceLimited =
         std::count(interfaceLimited.begin(), interfaceLimited.end(), true);
@@ -663,10 +671,11 @@ wallLayers growWallLayers(const layerSurface& surface, layerExchange& exchange)
     }
 
     const std::vector<bool> feature = featurePoints(stars, state.pointSpec);
+    layers.thinnedBy.assign(nPoints, layerThinning::none);
     layers.direction = layerDirections(stars, feature, layers.stats.nSmoothedDirections);
     layers.thickness = featureAndGapThickness
     (
-        stars, layers.direction, state.pointSpec, feature, layers.stats
+        stars, layers.direction, state.pointSpec, feature, layers.stats, layers.thinnedBy
     );
     smoothThickness(stars, layers.thickness);
     state.dropThinStacks();

@@ -1,14 +1,18 @@
 #include "layerStage.H"
 #include "coarseWallGap.H"
 #include "mpiLayerExchange.H"
+#include "failTogether.H"
 #include "pmshError.H"
 
 #include "streamManip.H"
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <memory>
+#include <set>
 
 namespace pmsh
 {
@@ -17,6 +21,7 @@ namespace
 {
 
 const char* const where = "pmsh::layerStage";
+
 
 
 //- How far a gap query must look: the thickest stack over its ratio.
@@ -100,6 +105,104 @@ wallLayers growLayers
     }
     noLayerExchange exchange;
     return growWallLayers(wall, exchange);
+}
+
+
+label writeThinnedLayers
+(
+    const Communicator& comm,
+    const wallLayers& layers,
+    const FineSurface& surface,
+    const std::string& file,
+    std::size_t maxPoints
+)
+{
+    struct thinnedPoint
+    {
+        barycentricId id;
+        point3 x;
+        layerThinning why;
+    };
+    std::vector<std::vector<thinnedPoint>> toMaster(comm.size());
+    for (label p = 0; p < label(layers.thinnedBy.size()); ++p)
+    {
+        if (layers.thinnedBy[p] != layerThinning::none)
+        {
+            toMaster[0].push_back({surface.ids[p], surface.points[p], layers.thinnedBy[p]});
+        }
+    }
+    // The master holds them all at once: on a massive mesh a sample, at
+    // most maxPoints over all ranks, every k-th of each rank's
+    const std::size_t perRank = std::max<std::size_t>(maxPoints/comm.size(), 1);
+    std::vector<thinnedPoint>& mine = toMaster[0];
+    const bool sampled = comm.any(mine.size() > perRank);
+    if (mine.size() > perRank)
+    {
+        const std::size_t stride = (mine.size() + perRank - 1)/perRank;
+        std::size_t n = 0;
+        for (std::size_t i = 0; i < mine.size(); i += stride) mine[n++] = mine[i];
+        mine.resize(n);
+    }
+    // Every rank's points at the master: a point on a partition interface
+    // comes from each of its holders, alike (the ranks agree on its stack)
+    const std::vector<std::vector<thinnedPoint>> received = comm.exchange(toMaster);
+    label nPoints = 0;
+    failTogether(comm, [&]
+    {
+        if (!comm.master()) return;
+        std::set<barycentricId> seen;
+        std::vector<thinnedPoint> points;
+        for (const auto& fromRank : received)
+        {
+            for (const thinnedPoint& t : fromRank)
+            {
+                if (seen.insert(t.id).second) points.push_back(t);
+            }
+        }
+        nPoints = label(points.size());
+        namespace fs = std::filesystem;
+        if (points.empty())
+        {
+            fs::remove(file);
+            return;
+        }
+        fs::create_directories(fs::path(file).parent_path());
+        std::ofstream os(file);
+        os.precision(10);
+        os  << "# vtk DataFile Version 2.0\n"
+            << "pmshFoam: wall points whose prism layers were thinned, and why\n"
+            << "ASCII\nDATASET POLYDATA\nPOINTS " << points.size() << " double\n";
+        for (const thinnedPoint& t : points)
+        {
+            os << t.x[0] << ' ' << t.x[1] << ' ' << t.x[2] << '\n';
+        }
+        os  << "VERTICES " << points.size() << ' ' << 2*points.size() << '\n';
+        for (std::size_t i = 0; i < points.size(); ++i)
+        {
+            os << "1 " << i << '\n';
+        }
+        os  << "POINT_DATA " << points.size() << "\nSCALARS thinnedBy int 1\n"
+            << "LOOKUP_TABLE default\n";
+        for (const thinnedPoint& t : points)
+        {
+            os << int(t.why) << '\n';
+        }
+        if (!os.flush())
+        {
+            throw FatalError
+            (
+                msg() << "Cannot write " << file << ": check the disk and the"
+                    " permissions of the case's postProcessing directory",
+                where
+            );
+        }
+        Foam::Info
+            << "    where and why stacks thinned: " << file.c_str() << ", "
+            << nPoints << " points" << (sampled ? " (a sample)" : "")
+            << ", thinnedBy 1 sharp edge, 2 gap, 3 valid prisms and tops,"
+            " 4 partition interface\n";
+    });
+    return nPoints;
 }
 
 

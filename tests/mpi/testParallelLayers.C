@@ -11,15 +11,19 @@
 #include "globalNumbering.H"
 #include "mpiLayerExchange.H"
 #include "partitionedCube.H"
+#include "layerStage.H"
 #include "wallLayers.H"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <set>
+#include <stdlib.h>
 
 using namespace pmsh;
 
@@ -587,4 +591,120 @@ TEST(parallelLayers, aRankWithoutLayerPointsTakesPartInTheNumbering)
         }
     }
     expectLayerNumbers(c, layerPoints);
+}
+
+
+// * * * * * * * * * * * * * Where stacks thinned * * * * * * * * * * * * * //
+
+namespace
+{
+
+//- A rank's thinned points for writeThinnedLayers: n of its own (coarse
+//  vertex ids from 1000*(rank + 1)) and one every rank holds (id 1), each
+//  with its reason: point i's is 1 + i % 4, the shared one's 4.
+void thinnedPointsOfRank(int rank, int n, wallLayers& layers, FineSurface& surface)
+{
+    surface.points.clear();
+    surface.ids.clear();
+    layers.thinnedBy.clear();
+    for (int i = 0; i < n; ++i)
+    {
+        surface.points.push_back({double(rank), double(i), 0});
+        surface.ids.push_back(barycentricId(1000*(rank + 1) + i, 1, 0, 0, 0, 0));
+        layers.thinnedBy.push_back(layerThinning(1 + i % 4));
+    }
+    surface.points.push_back({-1, -1, -1});
+    surface.ids.push_back(barycentricId(1, 1, 0, 0, 0, 0));
+    layers.thinnedBy.push_back(layerThinning::partitionInterface);
+    // An unthinned point is not written
+    surface.points.push_back({-2, -2, -2});
+    surface.ids.push_back(barycentricId(2, 1, 0, 0, 0, 0));
+    layers.thinnedBy.push_back(layerThinning::none);
+}
+
+//- The thinnedBy of every point of a thinnedLayers.vtk, by its position
+std::map<std::array<double, 3>, int> readThinnedLayers(const std::string& file)
+{
+    std::ifstream is(file);
+    std::string word;
+    std::size_t n = 0;
+    while (is >> word && word != "POINTS") {}
+    is >> n >> word;
+    std::vector<std::array<double, 3>> x(n);
+    for (auto& p : x) is >> p[0] >> p[1] >> p[2];
+    while (is >> word && word != "default") {}
+    std::map<std::array<double, 3>, int> why;
+    for (const auto& p : x) is >> why[p];
+    EXPECT_TRUE(bool(is)) << file;
+    return why;
+}
+
+//- A scratch directory of the master's, known to every rank
+std::string sharedScratchDirectory(const Communicator& comm)
+{
+    std::vector<char> dir(256, 0);
+    if (comm.master())
+    {
+        char name[] = "/tmp/pmshThinnedLayersXXXXXX";
+        const char* made = mkdtemp(name);
+        EXPECT_NE(made, nullptr);
+        std::strncpy(dir.data(), made ? made : "/tmp", dir.size() - 1);
+    }
+    comm.broadcast(dir);
+    return dir.data();
+}
+
+} // End anonymous namespace
+
+
+TEST(parallelLayers, thinnedPointsOfEveryRankAreWrittenOnceWithTheirReasonAndAStaleFileGoes)
+{
+    const Communicator& comm = test::world();
+    const std::string dir = sharedScratchDirectory(comm);
+    const std::string file = dir + "/postProcessing/pmshFoam/thinnedLayers.vtk";
+    wallLayers layers;
+    FineSurface surface;
+    const int n = 10;
+    thinnedPointsOfRank(comm.rank(), n, layers, surface);
+
+    const label written = writeThinnedLayers(comm, layers, surface, file);
+    if (comm.master())
+    {
+        EXPECT_EQ(written, n*comm.size() + 1);
+        const auto why = readThinnedLayers(file);
+        EXPECT_EQ(label(why.size()), written);
+        for (int r = 0; r < comm.size(); ++r)
+        {
+            for (int i = 0; i < n; ++i)
+            {
+                const std::array<double, 3> x{double(r), double(i), 0};
+                ASSERT_TRUE(why.count(x)) << "rank " << r << " point " << i;
+                EXPECT_EQ(why.at(x), 1 + i % 4);
+            }
+        }
+        EXPECT_EQ(why.at({-1, -1, -1}), 4);
+        EXPECT_FALSE(why.count({-2, -2, -2}));
+    }
+    else
+    {
+        EXPECT_EQ(written, 0);
+    }
+
+    // Above the cap, every k-th of each rank's: at most the cap in all
+    const label sampled = writeThinnedLayers(comm, layers, surface, file, 4*comm.size());
+    if (comm.master())
+    {
+        EXPECT_GT(sampled, 0);
+        EXPECT_LE(sampled, 4*comm.size());
+        EXPECT_EQ(label(readThinnedLayers(file).size()), sampled);
+    }
+
+    // Nothing thinned: the file of the run before goes
+    std::fill(layers.thinnedBy.begin(), layers.thinnedBy.end(), layerThinning::none);
+    EXPECT_EQ(writeThinnedLayers(comm, layers, surface, file), 0);
+    comm.masterWorksOthersSleep([&]
+    {
+        EXPECT_FALSE(std::filesystem::exists(file));
+        std::filesystem::remove_all(dir);
+    });
 }

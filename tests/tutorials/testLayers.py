@@ -67,6 +67,31 @@ class layers(CaseTest):
         with open(os.path.join(c.dir, "log.pmshFoam")) as f:
             self.assertIn("prism stacks whole", f.read())
 
+    def thinned_layers(self, c, log):
+        """postProcessing/pmshFoam/thinnedLayers.vtk: its points and their
+        thinnedBy, checked against the VTK layout and the log's line; None
+        when there is no file, and then no line either."""
+        path = os.path.join(c.dir, "postProcessing", "pmshFoam", "thinnedLayers.vtk")
+        line = re.search(r"where and why stacks thinned: (\S+), (\d+) points", log)
+        if not os.path.exists(path):
+            self.assertIsNone(line, "the log names a file that is not there")
+            return None
+        self.assertIsNotNone(line, "the file is there but the log does not say so")
+        self.assertEqual(os.path.realpath(line.group(1)), os.path.realpath(path))
+        with open(path) as f:
+            words = f.read().split("\n")
+        self.assertEqual(words[0], "# vtk DataFile Version 2.0")
+        self.assertEqual(words[2:4], ["ASCII", "DATASET POLYDATA"])
+        n = int(words[4].split()[1])
+        self.assertEqual(n, int(line.group(2)))
+        points = [tuple(map(float, w.split())) for w in words[5:5 + n]]
+        self.assertEqual(words[5 + n], "VERTICES %d %d" % (n, 2 * n))
+        start = words.index("LOOKUP_TABLE default") + 1
+        reasons = [int(w) for w in words[start:start + n]]
+        self.assertEqual(len(reasons), n)
+        self.assertTrue(set(reasons) <= {1, 2, 3, 4}, set(reasons))
+        return points, reasons
+
     def test_pipeAllrunGivesPressureDropWithin2Percent(self):
         """tutorials/pipe as shipped (12 layers on the wall, 2 ranks): Mesh
         OK, at least 99 % layer coverage in the log, and the Allrun's
@@ -114,6 +139,8 @@ class layers(CaseTest):
         # layered, it expects them exactly, and the cells within its band
         # (without them it was 0.3 of the cells on the 12-layer pipe)
         self.assertEqual(s["estimatedPrisms"], s["prisms"])
+        # No stack thinned: no file of where (a stale one would be removed)
+        self.assertIsNone(self.thinned_layers(c, log))
         ratio = s["estimatedFineCells"] / s["fineCells"]
         self.assertGreaterEqual(ratio, 0.67)
         self.assertLessEqual(ratio, 1.5)
@@ -129,7 +156,10 @@ class layers(CaseTest):
         halved the stacks and nothing limited their slope). Fewer than 200
         faces above 70 degrees (25): the STL's noisy normals crumpled the
         tops of the stacks, and HXT could not mend the tets against them
-        (2,113 faces, and 47 s in its optimiser)."""
+        (2,113 faces, and 47 s in its optimiser). Where and why stacks
+        thinned is in postProcessing/pmshFoam/thinnedLayers.vtk: points on
+        the body, some for valid prisms and tops (the grooves), some for
+        the partition interface (526 and 8,705 of 9,231)."""
         helper = bodyInBox(methodName="test_stlNp2")
         helper.cases = self.cases
         c = helper.body_case("sphereInBox.stl")
@@ -147,6 +177,13 @@ class layers(CaseTest):
         self.assertEqual(s["volumeMesherPerRank"], ["hxt", "hxt"])
         self.assertEqual(s["volumeAttemptsPerRank"], [1, 1])
         self.assertGreaterEqual(s["layers"]["body"]["coverage"], 0.99)
+        thinned = self.thinned_layers(c, log)
+        self.assertIsNotNone(thinned, log[-3000:])
+        points, reasons = thinned
+        self.assertGreater(reasons.count(3), 0)
+        self.assertGreater(reasons.count(4), 0)
+        for x, y, z in points:      # the bullet: |x|, |y| <= 0.005, -0.005 <= z <= 0.015
+            self.assertTrue(max(abs(x), abs(y)) <= 0.0051 and -0.0051 <= z <= 0.0151, (x, y, z))
         text = c.check_mesh(np=2)
         severe = re.search(r"severely non-orthogonal \(> 70 degrees\) faces: (\d+)", text)
         self.assertLess(int(severe.group(1)) if severe else 0, 200, text[-3000:])
