@@ -129,7 +129,9 @@ struct layerState
     }
 
     //- Per triangle, what it crosses once every point is at its top level
-    //  and the interface has risen (triangleCrossings.H).
+    //  and the interface has risen (triangleCrossings.H), folds included
+    //  as in stage 4's check: a risen interface slides in its own plane
+    //  where the stacks are several of its rings tall, and folds there.
     std::vector<label> crossings() const
     {
         const auto& triangles = stars.surface().triangles;
@@ -147,7 +149,7 @@ struct layerState
                     || (!layers.shift.empty() && magSqr(layers.shift[p]) > 0);
             }
         }
-        return crossingTriangles(lifted, triangles, moved);
+        return crossingTriangles(lifted, triangles, moved, true);
     }
 
     //- Whether, on any rank, a triangle crosses one with which it has no

@@ -1079,3 +1079,31 @@ TEST(wallLayers, interfaceCloserThanTheLayersRisesWithThemInsteadOfThinningThem)
     EXPECT_GE(risen[0].size(), std::size_t(nTheta));
     EXPECT_EQ(risen[0], risen[1]);
 }
+
+
+TEST(wallLayers, risenInterfaceOverRingsFinerThanTheStacksPassesStageFoursFoldTest)
+{
+    // Stacks six rings of the interface tall: the risen interface slides
+    // ring over ring in its own plane (its shift is along the wall's
+    // normal, which lies in it). The validity rounds tested crossings
+    // without folds (pairs sharing a point, coplanar overlaps), stage 4
+    // with them: 384 of each part's 912 triangles folded, which the
+    // rounds passed and stage 4 would have stopped on
+    const int nTheta = 24, nZ = 12, nRings = 10;
+    const double H = 2;
+    const testSurface whole = pipe(0.5, H, nTheta, nZ);
+    const std::map<label, layerSpecification> specs{{0, spec(4, 0.05, 1.3)}};   // 0.31, six rings
+    testSurface parts[2];
+    wallLayers split[2];
+    growInTwoParts(whole, H, nTheta, nRings, specs, nullptr, parts, split);
+    for (int r = 0; r < 2; ++r)
+    {
+        const testSurface& s = parts[r];
+        std::vector<point3> lifted(s.points.size());
+        for (label p = 0; p < label(s.points.size()); ++p) lifted[p] = split[r].topPoint(s.points, p);
+        const std::vector<label> crossing =
+            crossingTriangles(lifted, s.triangles, std::vector<bool>(s.triangles.size(), true), true);
+        EXPECT_EQ(std::count(crossing.begin(), crossing.end(), 0), label(crossing.size())) << "part " << r;
+        expectValidPrisms(s, split[r]);
+    }
+}
