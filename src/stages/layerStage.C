@@ -23,7 +23,6 @@ namespace
 const char* const where = "pmsh::layerStage";
 
 
-
 //- How far a gap query must look: the thickest stack over its ratio.
 double gapReach(const std::map<label, layerSpecification>& specs)
 {

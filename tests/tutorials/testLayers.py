@@ -159,7 +159,7 @@ class layers(CaseTest):
         (2,113 faces, and 47 s in its optimiser). Where and why stacks
         thinned is in postProcessing/pmshFoam/thinnedLayers.vtk: points on
         the body, some for valid prisms and tops (the grooves), some for
-        the partition interface (526 and 8,705 of 9,231)."""
+        the partition interface (8,705 and 526 of 9,231)."""
         helper = bodyInBox(methodName="test_stlNp2")
         helper.cases = self.cases
         c = helper.body_case("sphereInBox.stl")
