@@ -74,50 +74,23 @@ Foam::scalarField methodWeights(const std::vector<double>& weights, label nCells
 }
 
 
-// Decompose with OpenFOAM's decompositionMethod; cellPart[c] in [0, nParts)
-std::vector<label> decomposeCells
+// Decompose a graph with OpenFOAM's decompositionMethod; the part of every
+// node in [0, nParts). `nodes` names them in messages ("coarse cells")
+std::vector<label> decomposeGraph
 (
-    const CoarseMesh& coarse,
+    const Foam::labelListList& nodeNodes,
+    const Foam::pointField& centres,
+    const Foam::scalarField& weights,
     label nParts,
     const Foam::dictionary& decompositionDict,
-    const std::vector<double>& cellWeights
+    const std::string& nodes
 )
 {
-    const label nCells = coarse.nCells();
-
+    const label nNodes = label(nodeNodes.size());
     Foam::dictionary dict(decompositionDict);
     dict.set("numberOfSubdomains", Foam::label(nParts));
 
     checkDecompositionMethod(dict);
-
-    // The graph: the face neighbours of every coarse tet; the points: the
-    // tet centroids; the weights: the expected fine cells (else 1)
-    const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
-    Foam::labelListList cellCells(nCells);
-    Foam::pointField centres(nCells);
-    const Foam::scalarField weights = methodWeights(cellWeights, nCells);
-    for (label c = 0; c < nCells; ++c)
-    {
-        Foam::labelList& nbrs = cellCells[c];
-        nbrs.setSize(4);
-        label n = 0;
-        for (label nbr : neighbours[c])
-        {
-            if (!isBoundaryNeighbour(nbr))
-            {
-                nbrs[n++] = nbr;
-            }
-        }
-        nbrs.setSize(n);
-
-        const tetVerts& t = coarse.tets[c];
-        const point3 centroid = 0.25*
-        (
-            (coarse.points[t[0]] + coarse.points[t[1]])
-          + (coarse.points[t[2]] + coarse.points[t[3]])
-        );
-        centres[c] = Foam::point(centroid[0], centroid[1], centroid[2]);
-    }
 
     Foam::labelList decomp;
     try
@@ -126,14 +99,14 @@ std::vector<label> decomposeCells
         const serialSection serial;
         Foam::autoPtr<Foam::decompositionMethod> decomposer =
             foam::newDecompositionMethod(dict);
-        decomp = decomposer->decompose(cellCells, centres, weights);
+        decomp = decomposer->decompose(nodeNodes, centres, weights);
     }
     catch (const Foam::error& e)
     {
         throw FatalError
         (
             msg() << "The " << methodFrom(dict) << " failed for "
-                << nCells << " coarse cells into " << nParts << " parts:\n"
+                << nNodes << " " << nodes << " into " << nParts << " parts:\n"
                 << FatalError::of(e).message() << "\n"
                 << "Valid decomposition methods: " << validDecompositionMethods(),
             "partitionCells"
@@ -143,19 +116,19 @@ std::vector<label> decomposeCells
     // Trust no method blindly: a stub library or a bad manual file gives
     // nonsense that would crash the later stages
     std::string problem;
-    if (decomp.size() != nCells)
+    if (decomp.size() != nNodes)
     {
         problem = "gave " + std::to_string(decomp.size()) + " parts for "
-            + std::to_string(nCells) + " cells";
+            + std::to_string(nNodes) + " " + nodes;
     }
     else
     {
-        for (label c = 0; c < nCells && problem.empty(); ++c)
+        for (label c = 0; c < nNodes && problem.empty(); ++c)
         {
             if (decomp[c] < 0 || decomp[c] >= nParts)
             {
-                problem = "put cell " + std::to_string(c) + " in part "
-                    + std::to_string(decomp[c]) + ", not one of 0.."
+                problem = "put node " + std::to_string(c) + " of the " + nodes
+                    + " in part " + std::to_string(decomp[c]) + ", not one of 0.."
                     + std::to_string(nParts - 1);
             }
         }
@@ -170,6 +143,56 @@ std::vector<label> decomposeCells
         );
     }
     return std::vector<label>(decomp.begin(), decomp.end());
+}
+
+
+point3 centroidOf(const CoarseMesh& coarse, label c)
+{
+    const tetVerts& t = coarse.tets[c];
+    return 0.25*
+    (
+        (coarse.points[t[0]] + coarse.points[t[1]])
+      + (coarse.points[t[2]] + coarse.points[t[3]])
+    );
+}
+
+
+// Decompose the coarse cells with OpenFOAM's decompositionMethod; the
+// graph: the face neighbours of every coarse tet; the points: the tet
+// centroids; the weights: the expected fine cells (else 1)
+std::vector<label> decomposeCells
+(
+    const CoarseMesh& coarse,
+    label nParts,
+    const Foam::dictionary& decompositionDict,
+    const std::vector<double>& cellWeights
+)
+{
+    const label nCells = coarse.nCells();
+    const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
+    Foam::labelListList cellCells(nCells);
+    Foam::pointField centres(nCells);
+    for (label c = 0; c < nCells; ++c)
+    {
+        Foam::labelList& nbrs = cellCells[c];
+        nbrs.setSize(4);
+        label n = 0;
+        for (label nbr : neighbours[c])
+        {
+            if (!isBoundaryNeighbour(nbr))
+            {
+                nbrs[n++] = nbr;
+            }
+        }
+        nbrs.setSize(n);
+        const point3 centroid = centroidOf(coarse, c);
+        centres[c] = Foam::point(centroid[0], centroid[1], centroid[2]);
+    }
+    return decomposeGraph
+    (
+        cellCells, centres, methodWeights(cellWeights, nCells), nParts,
+        decompositionDict, "coarse cells"
+    );
 }
 
 } // End anonymous namespace
@@ -221,6 +244,88 @@ std::vector<pmsh::label> pmsh::partitionCells
         << " after moving " << moved << " coarse cells\n"
         << defaultfloat;
     return cellPart;
+}
+
+
+std::vector<pmsh::label> pmsh::groupPieces
+(
+    const CoarseMesh& coarse,
+    const std::vector<label>& cellPiece,
+    label nPieces,
+    label nParts,
+    const Foam::dictionary& decompositionDict,
+    const std::vector<double>& weights
+)
+{
+    if (nParts == 1)
+    {
+        return std::vector<label>(nPieces, 0);
+    }
+
+    // The pieces' graph: two pieces are neighbours where they share a
+    // coarse face; a piece stands at its cells' weighted centroid
+    const std::vector<faceNeighbours> neighbours = coarseFaceNeighbours(coarse);
+    std::vector<std::vector<label>> adjacent(nPieces);
+    std::vector<double> pieceWeight(nPieces, 0);
+    std::vector<point3> centre(nPieces, point3{0, 0, 0});
+    for (label c = 0; c < coarse.nCells(); ++c)
+    {
+        const label p = cellPiece[c];
+        const double w = weights.empty() ? 1.0 : weights[c];
+        pieceWeight[p] += w;
+        centre[p] = centre[p] + w*centroidOf(coarse, c);
+        for (label nbr : neighbours[c])
+        {
+            if (!isBoundaryNeighbour(nbr) && cellPiece[nbr] != p)
+            {
+                adjacent[p].push_back(cellPiece[nbr]);
+            }
+        }
+    }
+    Foam::labelListList pieceNeighbours(nPieces);
+    Foam::pointField centres(nPieces);
+    for (label p = 0; p < nPieces; ++p)
+    {
+        std::vector<label>& a = adjacent[p];
+        std::sort(a.begin(), a.end());
+        a.erase(std::unique(a.begin(), a.end()), a.end());
+        pieceNeighbours[p] = Foam::labelList(a.begin(), a.end());
+        const point3 x = (1/std::max(pieceWeight[p], 1e-300))*centre[p];
+        centres[p] = Foam::point(x[0], x[1], x[2]);
+    }
+    std::vector<label> pieceRank = decomposeGraph
+    (
+        pieceNeighbours, centres, methodWeights(pieceWeight, nPieces), nParts,
+        decompositionDict, "pieces"
+    );
+
+    // A method may leave a part without pieces (metis on few nodes): give
+    // it the lightest piece of the part with most, which keeps one at least
+    std::vector<label> nOf(nParts, 0);
+    for (label r : pieceRank)
+    {
+        ++nOf[r];
+    }
+    for (label empty = 0; empty < nParts; ++empty)
+    {
+        if (nOf[empty] > 0)
+        {
+            continue;
+        }
+        const label from = label(std::max_element(nOf.begin(), nOf.end()) - nOf.begin());
+        label lightest = -1;
+        for (label p = 0; p < nPieces; ++p)
+        {
+            if (pieceRank[p] == from && (lightest < 0 || pieceWeight[p] < pieceWeight[lightest]))
+            {
+                lightest = p;
+            }
+        }
+        pieceRank[lightest] = empty;
+        --nOf[from];
+        ++nOf[empty];
+    }
+    return pieceRank;
 }
 
 
