@@ -75,6 +75,7 @@ Usage
 #include "globalNumbering.H"
 #include "layerStage.H"
 #include "memoryEstimate.H"
+#include "meshPieces.H"
 #include "meshSettings.H"
 #include "partitionCoarseMesh.H"
 #include "partitionVolume.H"
@@ -273,8 +274,18 @@ static void meshCase
     stages.end();
 
     stages.begin("partition", "Stage 2: partition into " + std::to_string(comm.size()) + " parts");
-    std::vector<pmsh::label> cellPart =
-        pmsh::partitionCoarseMesh(comm, coarse, inputs.decomposition, forecast.fineWeights);
+    // No volume-mesher call meshes more than maxPieceCells: a larger part
+    // is meshed in pieces
+    pmsh::meshPieces pieces = pmsh::partitionIntoPieces
+    (
+        comm, coarse, inputs.decomposition, forecast.fineWeights,
+        pmsh::numberOfPieces
+        (
+            forecast.estimate.fineCells - forecast.estimate.prisms, comm.size(),
+            settings.maxPieceCells, !layerSpecs.empty()
+        )
+    );
+    std::vector<pmsh::label> cellPart = std::move(pieces.cellPart);
     std::vector<double>().swap(forecast.fineWeights);
     pmsh::logPartSizes(comm, cellPart);
     stages.end();
@@ -290,9 +301,11 @@ static void meshCase
     {
         surface = pmsh::refinePartSurface
         (
-            coarse, cellPart, comm.rank(), inputs.geometry.get(), settings.refinementLevels
+            coarse, cellPart, comm.rank(), inputs.geometry.get(), settings.refinementLevels,
+            pieces.cellPiece
         );
     });
+    std::vector<pmsh::label>().swap(pieces.cellPiece);
     pmsh::logSurfaceSizes(comm, surface);
     const pmsh::projectionRepairSummary repair =
         pmsh::logProjectionRepair(comm, surface.repair);
@@ -314,11 +327,11 @@ static void meshCase
         const std::vector<pmsh::point3>& points = lifted.empty() ? surface.points : lifted;
         const std::string failedSurface = pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank());
         pmsh::checkSurfaceCrossings(points, surface, coarse.patches, comm.rank(), failedSurface);
-        volume = pmsh::meshVolumeByZone
+        volume = pmsh::meshVolumeInPieces
         (
             pmsh::VolumeMesher::NewAll(settings.volumeMesher),
             points,
-            surface.triangles, surface.zone, coarse.zones,
+            surface.triangles, {surface.zone, coarse.zones, surface.piece, surface.ids},
             pmsh::volumeParameters(settings, surface, comm.rank()),
             failedSurface,
             "Try a smaller maxCellSize (a finer coarse mesh) or another"

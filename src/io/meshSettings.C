@@ -556,7 +556,7 @@ std::vector<std::string> meshSettingsEntries()
     {
         "geometry", "maxCellSize", "grading", "refinementLevels",
         "coarseMesher", "volumeMesher", "optimisationSteps",
-        "volumeMesherThreads", "curvatureRefinement", "minCellSize",
+        "volumeMesherThreads", "maxPieceCells", "curvatureRefinement", "minCellSize",
         "coarseTimeLimit", "coarseSurface", "patches", "refinementRegions",
         "domain"
     };
@@ -663,6 +663,12 @@ meshSettings readMeshSettings
         dict, "volumeMesherThreads", 1, 1, 256, true,
         "Valid values are integers 1 <= volumeMesherThreads <= 256"
         " (threads per rank; 1 with one rank per core)"
+    );
+    s.maxPieceCells = check.bounded
+    (
+        dict, "maxPieceCells", meshSettings().maxPieceCells, 1000, 1e9, true,
+        "Valid values are integers 1000 <= maxPieceCells <= 1e9: the fine"
+        " cells one volume-mesher call meshes at most"
     );
 
     // Default 3: a ball of radius 0.5 at maxCellSize 1 then gets 120

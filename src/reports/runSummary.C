@@ -66,6 +66,8 @@ struct runFigures
     std::vector<double> memory;
     std::vector<double> cellsPerRank;
     std::vector<double> attemptsPerRank;
+    std::vector<double> callsPerRank;
+    std::vector<double> largestCallPerRank;
     std::vector<double> messagesPerRank;
     std::vector<double> bytesSentPerRank;
     std::vector<double> backendPerRank;
@@ -92,11 +94,12 @@ runFigures gatherFigures
     // One collective for this rank's figures, as meshQuality gathers its own
     struct rankRun
     {
-        double memory, cells, attempts, messages, bytesSent, backend;
+        double memory, cells, attempts, calls, largestCall, messages, bytesSent, backend;
     };
     const rankRun mine
     {
         double(peakMemoryBytes()), double(volume.nCells), double(volume.attempts),
+        double(volume.nCalls), double(volume.largestCall),
         f.traffic.messages, f.traffic.bytes,
         double
         (
@@ -109,6 +112,8 @@ runFigures gatherFigures
         f.memory.push_back(r.memory);
         f.cellsPerRank.push_back(r.cells);
         f.attemptsPerRank.push_back(r.attempts);
+        f.callsPerRank.push_back(r.calls);
+        f.largestCallPerRank.push_back(r.largestCall);
         f.messagesPerRank.push_back(r.messages);
         f.bytesSentPerRank.push_back(r.bytesSent);
         f.backendPerRank.push_back(r.backend);
@@ -252,6 +257,8 @@ void writeSummaryJson
     }
     os  << "],\n"
         << "  \"volumeAttemptsPerRank\": " << jsonArray(f.attemptsPerRank) << ",\n"
+        << "  \"volumeMesherCallsPerRank\": " << jsonArray(f.callsPerRank) << ",\n"
+        << "  \"largestVolumeMesherCallPerRank\": " << jsonArray(f.largestCallPerRank) << ",\n"
         << "  \"stages\": {\n";
     const auto& times = stages.times();
     for (std::size_t i = 0; i < times.size(); ++i)

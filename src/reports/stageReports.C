@@ -238,6 +238,14 @@ std::int64_t pmsh::logVolumeMeshing
         logPerRank("fine cells", n);
     }
     Info << "    fine cells: " << nCells << '\n' << defaultfloat;
+    const double calls = comm.sum(double(volume.nCalls));
+    if (calls > comm.size())
+    {
+        Info
+            << "    volume-mesher calls (pieces and zones): " << std::int64_t(calls)
+            << ", the largest " << std::int64_t(comm.max(double(volume.largestCall)))
+            << " fine cells\n";
+    }
     return nCells;
 }
 

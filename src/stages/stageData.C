@@ -16,7 +16,7 @@ std::vector<std::array<pmsh::label, 2>> pmsh::zonePairsOf(const CoarseMesh& coar
 
 void pmsh::dropFacesBetweenZones(FineSurface& surface)
 {
-    if (surface.zone.empty())
+    if (surface.zone.empty() && surface.piece.empty())
     {
         return;
     }
@@ -27,13 +27,21 @@ void pmsh::dropFacesBetweenZones(FineSurface& surface)
         {
             surface.triangles[kept] = surface.triangles[t];
             surface.region[kept] = surface.region[t];
-            surface.zone[kept] = surface.zone[t];
+            if (!surface.zone.empty())
+            {
+                surface.zone[kept] = surface.zone[t];
+            }
             ++kept;
         }
     }
     surface.triangles.resize(kept);
     surface.region.resize(kept);
-    surface.zone.resize(kept);
+    if (!surface.zone.empty())
+    {
+        surface.zone.resize(kept);
+    }
+    // The pieces are meshed and joined: the rank's surface is one again
+    std::vector<label>().swap(surface.piece);
 }
 
 

@@ -5,7 +5,8 @@ pmsh::coarsePartSurface pmsh::partitionSurface
 (
     const CoarseMesh& coarse,
     const std::vector<label>& cellPart,
-    label myPart
+    label myPart,
+    const std::vector<label>& cellPiece
 )
 {
     auto partOf = [&](label cell) { return cellPart.empty() ? 0 : cellPart[cell]; };
@@ -15,6 +16,8 @@ pmsh::coarsePartSurface pmsh::partitionSurface
     const zoneFaceIndex zoneFaces(coarse);
 
     coarsePartSurface surf;
+    auto pieceOf = [&](label cell) { return cellPiece.empty() ? 0 : cellPiece[cell]; };
+    label celli = 0;
     auto add = [&](const triVerts& f, label region, label surface, label zone)
     {
         surf.faces.push_back(f);
@@ -24,8 +27,12 @@ pmsh::coarsePartSurface pmsh::partitionSurface
         {
             surf.zone.push_back(zone);
         }
+        if (!cellPiece.empty())
+        {
+            surf.piece.push_back(cellPiece[celli]);
+        }
     };
-    for (label celli = 0; celli < coarse.nCells(); ++celli)
+    for (; celli < coarse.nCells(); ++celli)
     {
         if (partOf(celli) != myPart)
         {
@@ -44,7 +51,8 @@ pmsh::coarsePartSurface pmsh::partitionSurface
             }
             const bool otherPart = partOf(nbr) != myPart;
             const bool otherZone = coarse.zoneOf(nbr) != zone;
-            if (!otherPart && !otherZone)
+            const bool otherPiece = pieceOf(nbr) != pieceOf(celli);
+            if (!otherPart && !otherZone && !otherPiece)
             {
                 continue;
             }

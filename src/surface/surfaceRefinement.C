@@ -167,6 +167,10 @@ class fineSurfaceBuilder
             {
                 fine.zone.push_back(partSurface_.zone[facei]);
             }
+            if (!partSurface_.piece.empty())
+            {
+                fine.piece.push_back(partSurface_.piece[facei]);
+            }
         });
     }
 
@@ -311,14 +315,18 @@ pmsh::FineSurface pmsh::refinePartSurface
     const std::vector<label>& cellPart,
     label part,
     const Geometry* geometry,
-    int levels
+    int levels,
+    const std::vector<label>& cellPiece
 )
 {
-    const coarsePartSurface partSurface = partitionSurface(coarse, cellPart, part);
+    const coarsePartSurface partSurface =
+        partitionSurface(coarse, cellPart, part, cellPiece);
+    // The fold repair sees the faces between pieces as interfaces, so that
+    // it decides on the pieces alone, whatever rank holds them
     FineSurface fine = refineSurface
     (
         coarse, partSurface, boundaryEdgeSurfaces(coarse, geometry), geometry, levels,
-        true, cellPart
+        true, cellPiece.empty() ? cellPart : cellPiece
     );
     const label nFolded = countFoldedTriangles(coarse, partSurface, fine, levels);
     if (nFolded > 0)

@@ -10,7 +10,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <optional>
+#include <unordered_map>
 
 namespace
 {
@@ -246,77 +248,119 @@ pmsh::partitionVolumeResult pmsh::meshVolumeByZone
     const std::string& advice
 )
 {
-    if (triangleZone.empty())
+    const std::vector<label> onePiece;
+    const std::vector<barycentricId> noIds;
+    return meshVolumeInPieces
+    (
+        meshers, surfacePoints, surfaceTriangles,
+        {triangleZone, zoneNames, onePiece, noIds},
+        parameters, failedSurfaceFile, advice
+    );
+}
+
+
+pmsh::partitionVolumeResult pmsh::meshVolumeInPieces
+(
+    const std::vector<std::unique_ptr<VolumeMesher>>& meshers,
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
+    const closedSurfaces& closed,
+    const volumeMeshParameters& parameters,
+    const std::string& failedSurfaceFile,
+    const std::string& advice
+)
+{
+    const bool zoned = !closed.triangleZone.empty();
+    const bool pieces = !closed.trianglePiece.empty();
+    if (!zoned && !pieces)
     {
-        return meshVolumeWithFallbacks
+        partitionVolumeResult whole = meshVolumeWithFallbacks
         (
             meshers, surfacePoints, surfaceTriangles, parameters,
             failedSurfaceFile, advice
         );
+        whole.nCalls = 1;
+        whole.largestCall = whole.nCells;
+        return whole;
+    }
+
+    // The closed surfaces, by (piece, zone), in that order
+    const label nZones = std::max(label(closed.zoneNames.size()), label(1));
+    std::map<label, std::vector<label>> trianglesOf;
+    for (label t = 0; t < label(surfaceTriangles.size()); ++t)
+    {
+        const label piece = pieces ? closed.trianglePiece[t] : 0;
+        const label zone = zoned ? closed.triangleZone[t] : 0;
+        trianglesOf[piece*nZones + zone].push_back(t);
     }
 
     partitionVolumeResult joined;
     joined.mesh.points = surfacePoints;
     joined.minDihedral = 180;
     joined.attempts = 0;
-    const label nZones = label(zoneNames.size());
-    for (label zone = 0; zone < nZones; ++zone)
+    joined.nCalls = 0;
+    for (const auto& [key, ofKey] : trianglesOf)
     {
-        // The zone's triangles, its points renumbered in their order (so
-        // the local surface points keep the global order)
-        std::vector<label> local(surfacePoints.size(), -1);
+        const label piece = key/nZones;
+        const label zone = key % nZones;
+
+        // The closed surface's points, in the surface's order; with pieces
+        // in the order of their ids, so that a piece is meshed alike
+        // whatever else its rank holds
+        std::vector<label> global;
+        for (label t : ofKey)
+        {
+            global.insert(global.end(), surfaceTriangles[t].begin(), surfaceTriangles[t].end());
+        }
+        std::sort(global.begin(), global.end());
+        global.erase(std::unique(global.begin(), global.end()), global.end());
+        if (pieces)
+        {
+            std::sort
+            (
+                global.begin(), global.end(),
+                [&](label a, label b) { return closed.pointIds[a] < closed.pointIds[b]; }
+            );
+        }
+        std::unordered_map<label, label> local;
+        std::vector<point3> points;
+        for (label v : global)
+        {
+            local.emplace(v, label(points.size()));
+            points.push_back(surfacePoints[v]);
+        }
         std::vector<triVerts> triangles;
         volumeMeshParameters p = parameters;
         p.interfaceTriangles.clear();
-        for (std::size_t t = 0; t < surfaceTriangles.size(); ++t)
+        for (label t : ofKey)
         {
-            if (triangleZone[t] == zone)
+            const triVerts& tri = surfaceTriangles[t];
+            triangles.push_back({local.at(tri[0]), local.at(tri[1]), local.at(tri[2])});
+            if (!parameters.interfaceTriangles.empty())
             {
-                triangles.push_back(surfaceTriangles[t]);
-                for (label v : surfaceTriangles[t])
-                {
-                    local[v] = 0;
-                }
-                if (!parameters.interfaceTriangles.empty())
-                {
-                    p.interfaceTriangles.push_back(parameters.interfaceTriangles[t]);
-                }
-            }
-        }
-        if (triangles.empty())
-        {
-            continue;
-        }
-        std::vector<label> global;
-        std::vector<point3> points;
-        for (std::size_t v = 0; v < local.size(); ++v)
-        {
-            if (local[v] == 0)
-            {
-                local[v] = label(global.size());
-                global.push_back(label(v));
-                points.push_back(surfacePoints[v]);
-            }
-        }
-        for (triVerts& t : triangles)
-        {
-            for (label& v : t)
-            {
-                v = local[v];
+                p.interfaceTriangles.push_back(parameters.interfaceTriangles[t]);
             }
         }
 
-        p.what = parameters.what + ", zone " + zoneNames[zone];
+        const std::string name =
+            std::string(pieces ? "piece " + std::to_string(piece) : "")
+          + (pieces && zoned ? ", " : "")
+          + (zoned ? "zone " + closed.zoneNames[zone] : "");
+        const std::string suffix =
+            std::string(pieces ? "piece" + std::to_string(piece) : "")
+          + (pieces && zoned ? "_" : "")
+          + (zoned ? closed.zoneNames[zone] : "");
+        p.what = parameters.what + ", " + name;
         const std::filesystem::path file(failedSurfaceFile);
         partitionVolumeResult part = meshVolumeWithFallbacks
         (
             meshers, points, triangles, p,
-            (file.parent_path()/(file.stem().string() + "_" + zoneNames[zone]
+            (file.parent_path()/(file.stem().string() + "_" + suffix
           + file.extension().string())).string(),
             advice
         );
 
-        // Interior points follow the surface points of every zone before
+        // Interior points follow the surface points of every piece before
         for (std::size_t v = points.size(); v < part.mesh.points.size(); ++v)
         {
             global.push_back(label(joined.mesh.points.size()));
@@ -326,9 +370,14 @@ pmsh::partitionVolumeResult pmsh::meshVolumeByZone
         {
             joined.mesh.tets.push_back
             ({global[t[0]], global[t[1]], global[t[2]], global[t[3]]});
-            joined.tetZone.push_back(zone);
+            if (zoned)
+            {
+                joined.tetZone.push_back(zone);
+            }
         }
-        // The backend reported is that of the zone that needed most attempts
+        ++joined.nCalls;
+        joined.largestCall = std::max(joined.largestCall, part.nCells);
+        // The backend reported is that of the piece that needed most attempts
         if (part.attempts > joined.attempts)
         {
             joined.backend = part.backend;
@@ -336,7 +385,7 @@ pmsh::partitionVolumeResult pmsh::meshVolumeByZone
         }
         if (!part.failures.empty())
         {
-            joined.failures += "\n  zone " + zoneNames[zone] + ":" + part.failures;
+            joined.failures += "\n  " + name + ":" + part.failures;
         }
         joined.minDihedral = std::min(joined.minDihedral, part.minDihedral);
         joined.maxDihedral = std::max(joined.maxDihedral, part.maxDihedral);

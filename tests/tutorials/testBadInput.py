@@ -562,6 +562,12 @@ class badInput(BadInputTest, cases):
                                   self.dict_line(c, "grading"),
                                   "Valid values are numbers 0 <= grading <= 1"])
 
+    def test_maxPieceCellsBelowAThousand(self):
+        c = self.case("sphere", maxPieceCells=10)
+        self.expect_fatal(c, ["Entry 'maxPieceCells' is 10\n",
+                              self.dict_line(c, "maxPieceCells"),
+                              "Valid values are integers 1000 <= maxPieceCells <= 1e9"])
+
     def test_refinementLevelsOutsideTheirRange(self):
         for value in (11, -1):
             c = self.case("sphere", refinementLevels=value)

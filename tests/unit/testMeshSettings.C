@@ -119,6 +119,7 @@ TEST_F(meshSettingsTest, readsEveryEntry)
         "volumeMesher      netgen;\n"
         "optimisationSteps 7;\n"
         "volumeMesherThreads 2;\n"
+        "maxPieceCells     250000;\n"
         "patches\n{\n    inlet { type patch; }\n}\n"
     );
     EXPECT_EQ(s.dictFile, dictName);
@@ -131,6 +132,7 @@ TEST_F(meshSettingsTest, readsEveryEntry)
     EXPECT_EQ(s.volumeMesher, "netgen");
     EXPECT_EQ(s.optimisationSteps, 7);
     EXPECT_EQ(s.volumeMesherThreads, 2);
+    EXPECT_DOUBLE_EQ(s.maxPieceCells, 250000);
     EXPECT_EQ(s.patchType("inlet"), "patch");
 }
 
@@ -146,6 +148,7 @@ TEST_F(meshSettingsTest, optionalEntriesHaveTheirDefaults)
     EXPECT_EQ(s.coarseMesher, "netgen");
     EXPECT_EQ(s.optimisationSteps, 3);
     EXPECT_EQ(s.volumeMesherThreads, 1);
+    EXPECT_DOUBLE_EQ(s.maxPieceCells, meshSettings().maxPieceCells);
     EXPECT_EQ(s.patches.size(), 0);
     EXPECT_TRUE(s.refinementRegions.empty());
     EXPECT_FALSE(s.hasPatchSizes());
@@ -281,6 +284,12 @@ TEST_F(meshSettingsTest, integerEntriesMustBeIntegersInRange)
         EXPECT_HAS(err, "Entry 'volumeMesherThreads' is " + std::string(bad));
         EXPECT_HAS(err, "Valid values are integers 1 <= volumeMesherThreads <= 256");
     }
+    for (const char* bad : {"999", "2000000000", "5000.5"})
+    {
+        const std::string err = errorFor(minimal() + "maxPieceCells " + bad + ";\n");
+        EXPECT_HAS(err, "Entry 'maxPieceCells' is " + std::string(bad));
+        EXPECT_HAS(err, "Valid values are integers 1000 <= maxPieceCells <= 1e9");
+    }
     // The bounds themselves are valid
     const meshSettings s = read
     (
@@ -320,7 +329,7 @@ TEST_F(meshSettingsTest, unknownEntryIsAnErrorWithASuggestion)
         err,
         "Valid entries are: geometry, maxCellSize, grading, refinementLevels,"
         " coarseMesher, volumeMesher, optimisationSteps, volumeMesherThreads,"
-        " curvatureRefinement, minCellSize, coarseTimeLimit, coarseSurface,"
+        " maxPieceCells, curvatureRefinement, minCellSize, coarseTimeLimit, coarseSurface,"
         " patches, refinementRegions"
     );
 

@@ -1,0 +1,98 @@
+"""Meshing in pieces (src/partition/meshPieces.H): no volume-mesher call
+meshes more than maxPieceCells expected fine cells. A rank meshes its
+pieces one after another, joined on the faces between them; and as the
+pieces do not depend on the number of ranks, neither does the mesh.
+
+Run one test:  python3 testPieces.py pieces.test_sameGlobalMeshAtOneTwoAndFourRanksWhenMeshedInPieces
+"""
+
+import glob
+import os
+import re
+import sys
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from foamCase import CaseTest, PolyMeshFiles, read_check_mesh  # noqa: E402
+
+# The sphere at r = 2 expects about 82k fine cells: 5 pieces of 20k
+PIECE_CELLS = 20000
+
+
+def global_cells(case_dir):
+    """Every cell of the case's mesh (all processor directories, or
+    constant/), as the sorted coordinates of its points: a set that does
+    not depend on how the cells are numbered or split between ranks."""
+    dirs = sorted(glob.glob(os.path.join(case_dir, "processor*", "constant", "polyMesh"))) \
+        or [os.path.join(case_dir, "constant", "polyMesh")]
+    cells = set()
+    for d in dirs:
+        mesh = PolyMeshFiles(d)
+        points = mesh.points()
+        owner, neighbour = mesh.labels("owner"), mesh.labels("neighbour")
+        cell_points = {}
+        for f, face in enumerate(mesh.faces()):
+            for c in [owner[f]] + ([neighbour[f]] if f < len(neighbour) else []):
+                cell_points.setdefault(c, set()).update(face)
+        for vertices in cell_points.values():
+            cells.add(tuple(sorted(tuple(points[v]) for v in vertices)))
+    return cells
+
+
+class pieces(CaseTest):
+
+    def mesh(self, np, **entries):
+        entries.setdefault("volumeMesher", "hxt")
+        c = self.case("sphere", refinementLevels=2, **entries)
+        c.run("pmshFoam", np=np)
+        return c
+
+    def assert_meshed_in_pieces(self, c, np):
+        """The log's pieces, each meshed by one call of at most about
+        maxPieceCells (the expected cells are an estimate: 1.5x)"""
+        with open(os.path.join(c.dir, "log.pmshFoam")) as f:
+            log = f.read()
+        found = re.search(r"(\d+) pieces, meshed one volume-mesher call each", log)
+        self.assertIsNotNone(found, log[-3000:])
+        n_pieces = int(found.group(1))
+        self.assertGreater(n_pieces, np)
+        s = c.summary()
+        self.assertEqual(sum(s["volumeMesherCallsPerRank"]), n_pieces)
+        self.assertTrue(all(calls >= 1 for calls in s["volumeMesherCallsPerRank"]))
+        self.assertLessEqual(max(s["largestVolumeMesherCallPerRank"]), 1.5*PIECE_CELLS)
+        return n_pieces
+
+    def test_sameGlobalMeshAtOneTwoAndFourRanksWhenMeshedInPieces(self):
+        meshes = {}
+        for np in (1, 2, 4):
+            c = self.mesh(np, maxPieceCells=PIECE_CELLS)
+            self.assertEqual(self.assert_meshed_in_pieces(c, np), 5)
+            meshes[np] = global_cells(c.dir)
+            if np == 4:
+                c.check_mesh(np)
+        self.assertGreater(len(meshes[1]), 50000)
+        self.assertEqual(meshes[2], meshes[1], "2 ranks gave another mesh than 1")
+        self.assertEqual(meshes[4], meshes[1], "4 ranks gave another mesh than 1")
+
+        # Without pieces, one call a rank: the mesh depends on the ranks
+        # (so the comparison above can fail)
+        whole = [global_cells(self.mesh(np).dir) for np in (1, 2)]
+        self.assertNotEqual(whole[0], whole[1])
+
+    def test_netgenPiecesJoinIntoOneValidMeshOnTwoRanks(self):
+        c = self.mesh(2, volumeMesher="netgen", maxPieceCells=PIECE_CELLS)
+        self.assert_meshed_in_pieces(c, 2)
+        result = read_check_mesh(c.check_mesh(2))
+        self.assertEqual(result["cells"], c.summary()["fineCells"])
+
+    def test_piecesKeepTheWholeMeshesQuality(self):
+        """The faces between pieces are a flat lattice like the interfaces
+        between ranks: the mesh in 5 pieces is as good as in one a rank"""
+        split = read_check_mesh(self.mesh(2, maxPieceCells=PIECE_CELLS).check_mesh(2))
+        whole = read_check_mesh(self.mesh(2).check_mesh(2))
+        self.assertLessEqual(split["maxNonOrtho"], whole["maxNonOrtho"] + 5)
+        self.assertLessEqual(split["maxSkewness"], whole["maxSkewness"] + 0.2)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,207 @@
+// Meshing in pieces (meshPieces.H): how many pieces there are, how they
+// are grouped into ranks, each piece of a part closed on its own, and the
+// pieces' meshes joining into one conforming mesh on the faces between
+// them.
+
+#include "meshPieces.H"
+#include "partitionCoarseMesh.H"
+#include "partitionSurface.H"
+#include "partitionVolume.H"
+#include "surfaceRefinement.H"
+#include "cubeMesh.H"
+#include "surfaceChecks.H"
+#include "meshPatch.H"
+
+#include "messageStream.H"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+
+using namespace pmsh;
+
+namespace
+{
+
+// Quiet OpenFOAM's Info ("Selecting decompositionMethod ...")
+class pieces : public ::testing::Test
+{
+    int infoLevel_ = Foam::messageStream::level;
+protected:
+    void SetUp() override
+    {
+        Foam::messageStream::level = 0;
+    }
+    void TearDown() override
+    {
+        Foam::messageStream::level = infoLevel_;
+    }
+};
+
+std::vector<label> piecesOfCube(const CoarseMesh& m, label nPieces)
+{
+    return partitionCells(m, nPieces);
+}
+
+} // End anonymous namespace
+
+
+TEST_F(pieces, theNumberOfPiecesDependsOnTheMeshNotOnTheRanks)
+{
+    // 10.5 pieces' worth of cells: 11 pieces on 1, 2, 4 and 8 ranks
+    for (label ranks : {1, 2, 4, 8})
+    {
+        EXPECT_EQ(numberOfPieces(10.5e6, ranks, 1e6, false), 11) << ranks << " ranks";
+    }
+    // Less than a piece's worth a rank: one piece a rank, as without pieces
+    EXPECT_EQ(numberOfPieces(10.5e6, 16, 1e6, false), 16);
+    EXPECT_EQ(numberOfPieces(0.5e6, 2, 1e6, false), 2);
+    EXPECT_EQ(numberOfPieces(0.5e6, 1, 1e6, false), 1);
+}
+
+
+TEST_F(pieces, aLayeredMeshKeepsOnePieceARank)
+{
+    // Stage 3b raises the interfaces between ranks over the stacks, not
+    // the faces between the pieces of a rank
+    EXPECT_EQ(numberOfPieces(10.5e6, 2, 1e6, true), 2);
+}
+
+
+TEST_F(pieces, everyRankGetsAPieceAndEveryPieceOneRank)
+{
+    const CoarseMesh m = test::cubeMesh(5);
+    for (const auto& [nPieces, nParts] : std::vector<std::pair<label, label>>{{3, 2}, {5, 4}, {9, 8}, {8, 8}, {7, 1}})
+    {
+        const std::vector<label> cellPiece = piecesOfCube(m, nPieces);
+        const std::vector<label> pieceRank = groupPieces(m, cellPiece, nPieces, nParts);
+        ASSERT_EQ(label(pieceRank.size()), nPieces);
+        std::vector<label> piecesOf(nParts, 0);
+        for (label r : pieceRank)
+        {
+            ASSERT_GE(r, 0);
+            ASSERT_LT(r, nParts);
+            ++piecesOf[r];
+        }
+        for (label r = 0; r < nParts; ++r)
+        {
+            EXPECT_GT(piecesOf[r], 0) << nPieces << " pieces on " << nParts << " ranks: rank " << r;
+        }
+    }
+}
+
+
+TEST_F(pieces, aPartsPiecesAreClosedEachAndTheFacesBetweenThemComeTwiceReversedOffTheGeometry)
+{
+    const CoarseMesh m = test::cubeMesh(4);
+    const label nPieces = 6;
+    const std::vector<label> cellPiece = piecesOfCube(m, nPieces);
+    const std::vector<label> pieceRank = groupPieces(m, cellPiece, nPieces, 2);
+    std::vector<label> cellPart(cellPiece.size());
+    for (std::size_t c = 0; c < cellPiece.size(); ++c)
+    {
+        cellPart[c] = pieceRank[cellPiece[c]];
+    }
+
+    for (label part = 0; part < 2; ++part)
+    {
+        const coarsePartSurface s = partitionSurface(m, cellPart, part, cellPiece);
+        ASSERT_EQ(s.piece.size(), s.faces.size());
+        std::map<label, std::vector<triVerts>> facesOf;
+        std::set<triVerts> betweenPieces;
+        for (std::size_t f = 0; f < s.faces.size(); ++f)
+        {
+            EXPECT_EQ(pieceRank[s.piece[f]], part);
+            facesOf[s.piece[f]].push_back(s.faces[f]);
+            if (isBetweenZones(s.region[f]))
+            {
+                EXPECT_EQ(s.surface[f], -1) << "a face between pieces is not projected";
+                betweenPieces.insert(s.faces[f]);
+            }
+        }
+        EXPECT_GT(betweenPieces.size(), 0u) << "part " << part << " holds one piece only";
+        for (const triVerts& f : betweenPieces)
+        {
+            EXPECT_EQ(betweenPieces.count({f[0], f[2], f[1]}), 1u)
+                << "a face between pieces comes once, not once from each side";
+        }
+        for (const auto& [piece, faces] : facesOf)
+        {
+            EXPECT_TRUE(test::closedManifold(faces)) << "piece " << piece;
+        }
+    }
+
+    // Without pieces the part is one closed surface, as before
+    const coarsePartSurface whole = partitionSurface(m, cellPart, 0);
+    EXPECT_TRUE(whole.piece.empty());
+    EXPECT_TRUE(test::closedManifold(whole.faces));
+}
+
+
+TEST_F(pieces, aPartMeshedInPiecesIsOneConformingMeshOfItsVolume)
+{
+    const CoarseMesh m = test::cubeMesh(3);
+    const std::vector<label> cellPiece = piecesOfCube(m, 3);
+    const FineSurface s = refinePartSurface(m, {}, 0, nullptr, 1, cellPiece);
+
+    for (const std::string& backend : VolumeMesher::names())
+    {
+        volumeMeshParameters p;
+        p.what = "partition 0";
+        const partitionVolumeResult r = meshVolumeInPieces
+        (
+            VolumeMesher::NewAll(backend), s.points, s.triangles,
+            {s.zone, {}, s.piece, s.ids}, p,
+            (std::filesystem::path(::testing::TempDir())/"failedPieces.stl").string(), ""
+        );
+        EXPECT_EQ(r.nCalls, 3) << backend;
+        EXPECT_LE(r.largestCall, r.nCells) << backend;
+        EXPECT_TRUE(r.tetZone.empty()) << backend << ": pieces are not cellZones";
+
+        // Its volume is the cube's, every tet positive
+        double volume = 0;
+        std::map<triVerts, int> uses;
+        for (const tetVerts& t : r.mesh.tets)
+        {
+            const std::vector<point3>& x = r.mesh.points;
+            const double v6 = tetVolume6(x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
+            EXPECT_GT(v6, 0) << backend;
+            volume += v6/6;
+            for (triVerts f : outwardTetFaces(t))
+            {
+                std::sort(f.begin(), f.end());
+                ++uses[f];
+            }
+        }
+        EXPECT_NEAR(volume, 1.0, 1e-9) << backend;
+
+        // Conforming: a face is the cube's (one tet) or between two tets,
+        // also where pieces meet; the faces of one tet are the cube's
+        std::size_t nBoundary = 0;
+        for (const auto& [f, n] : uses)
+        {
+            ASSERT_LE(n, 2) << backend;
+            if (n == 1)
+            {
+                ++nBoundary;
+                bool onSide = false;
+                for (int d = 0; d < 3; ++d)
+                {
+                    for (double side : {0.0, 1.0})
+                    {
+                        onSide = onSide ||
+                        (
+                            r.mesh.points[f[0]][d] == side && r.mesh.points[f[1]][d] == side
+                         && r.mesh.points[f[2]][d] == side
+                        );
+                    }
+                }
+                EXPECT_TRUE(onSide) << backend << ": a face of one tet inside the cube";
+            }
+        }
+        EXPECT_EQ(nBoundary, m.boundary.size()*4) << backend;
+    }
+}
