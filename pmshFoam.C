@@ -157,6 +157,46 @@ static pmsh::wallLayers layerStage
 }
 
 
+// Stage 4: this rank's volume filled with tets, piece by piece and zone
+// by zone (with layers: the surface lifted to their tops). nTets: the
+// tets of all ranks.
+static pmsh::partitionVolumeResult volumeStage
+(
+    const pmsh::Communicator& comm,
+    pmsh::stageLog& stages,
+    const pmsh::meshSettings& settings,
+    const pmsh::CoarseMesh& coarse,
+    const pmsh::FineSurface& surface,
+    const pmsh::wallLayers& layers,
+    const std::string& caseDir,
+    std::int64_t& nTets
+)
+{
+    stages.begin("volume", "Stage 4: volume meshing (" + settings.volumeMesher + ")");
+    pmsh::partitionVolumeResult volume;
+    const std::vector<pmsh::point3> lifted = pmsh::liftedSurfacePoints(layers, surface.points);
+    pmsh::failTogether(comm, [&]
+    {
+        const std::vector<pmsh::point3>& points = lifted.empty() ? surface.points : lifted;
+        const std::string failedSurface = pmsh::failedSurfaceFile(caseDir, comm.rank());
+        pmsh::checkSurfaceCrossings(points, surface, coarse.patches, comm.rank(), failedSurface);
+        volume = pmsh::meshVolumeInPieces
+        (
+            pmsh::VolumeMesher::NewAll(settings.volumeMesher),
+            points,
+            surface.triangles, {surface.zone, coarse.zones, surface.piece, surface.ids},
+            pmsh::volumeParameters(settings, surface, comm.rank()),
+            failedSurface,
+            "Try a smaller maxCellSize (a finer coarse mesh) or another"
+            " volumeMesher in system/pmshDict."
+        );
+    });
+    nTets = pmsh::logVolumeMeshing(comm, volume);
+    stages.end();
+    return volume;
+}
+
+
 // Stage 7: the rank's mesh, its fields and procAddressing, committed
 // once every rank has written; the decomposeParDict of a parallel run.
 static pmsh::writtenMesh writeStage
@@ -318,30 +358,13 @@ static void meshCase
         runTime.globalPath(), layerReport
     );
 
-    stages.begin("volume", "Stage 4: volume meshing (" + settings.volumeMesher + ")");
-    pmsh::partitionVolumeResult volume;
-    // With layers the mesher fills the surface lifted to their tops
-    const std::vector<pmsh::point3> lifted = pmsh::liftedSurfacePoints(layers, surface.points);
-    pmsh::failTogether(comm, [&]
-    {
-        const std::vector<pmsh::point3>& points = lifted.empty() ? surface.points : lifted;
-        const std::string failedSurface = pmsh::failedSurfaceFile(runTime.globalPath(), comm.rank());
-        pmsh::checkSurfaceCrossings(points, surface, coarse.patches, comm.rank(), failedSurface);
-        volume = pmsh::meshVolumeInPieces
-        (
-            pmsh::VolumeMesher::NewAll(settings.volumeMesher),
-            points,
-            surface.triangles, {surface.zone, coarse.zones, surface.piece, surface.ids},
-            pmsh::volumeParameters(settings, surface, comm.rank()),
-            failedSurface,
-            "Try a smaller maxCellSize (a finer coarse mesh) or another"
-            " volumeMesher in system/pmshDict."
-        );
-    });
+    std::int64_t nTets = 0;
+    pmsh::partitionVolumeResult volume = volumeStage
+    (
+        comm, stages, settings, coarse, surface, layers, runTime.globalPath(), nTets
+    );
     const pmsh::TetMesh& tets = volume.mesh;
-    const std::int64_t nFineCells =
-        pmsh::logVolumeMeshing(comm, volume) + std::int64_t(layerReport.prisms);
-    stages.end();
+    const std::int64_t nFineCells = nTets + std::int64_t(layerReport.prisms);
 
     stages.begin("numbering", "Stage 5: global point numbering");
     pmsh::globalPointNumbering numbering

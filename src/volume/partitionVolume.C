@@ -6,6 +6,7 @@
 #include "retryLadder.H"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -100,6 +101,62 @@ std::vector<ladderAttempt<volumeAttempt>> volumeAttempts
         );
     }
     return attempts;
+}
+
+//- One closed surface of a rank's surface (a piece, a zone): its points
+//  (global: their indices in the rank's surface), its triangles in them,
+//  and which are interface triangles
+struct closedPiece
+{
+    std::vector<label> global;
+    std::vector<point3> points;
+    std::vector<triVerts> triangles;
+    std::vector<char> interfaceTriangles;
+};
+
+//- The closed surface of `triangles` (indices into surfaceTriangles). Its
+//  points keep the surface's order, or with ids the order of their ids:
+//  then a piece goes to the mesher alike whatever else its rank holds
+closedPiece closedPieceOf
+(
+    const std::vector<point3>& surfacePoints,
+    const std::vector<triVerts>& surfaceTriangles,
+    const std::vector<label>& triangles,
+    const std::vector<char>& interfaceTriangles,
+    const std::vector<barycentricId>* ids
+)
+{
+    closedPiece c;
+    for (label t : triangles)
+    {
+        c.global.insert(c.global.end(), surfaceTriangles[t].begin(), surfaceTriangles[t].end());
+    }
+    std::sort(c.global.begin(), c.global.end());
+    c.global.erase(std::unique(c.global.begin(), c.global.end()), c.global.end());
+    if (ids)
+    {
+        std::sort
+        (
+            c.global.begin(), c.global.end(),
+            [&](label a, label b) { return (*ids)[a] < (*ids)[b]; }
+        );
+    }
+    std::unordered_map<label, label> local;
+    for (label v : c.global)
+    {
+        local.emplace(v, label(c.points.size()));
+        c.points.push_back(surfacePoints[v]);
+    }
+    for (label t : triangles)
+    {
+        const triVerts& tri = surfaceTriangles[t];
+        c.triangles.push_back({local.at(tri[0]), local.at(tri[1]), local.at(tri[2])});
+        if (!interfaceTriangles.empty())
+        {
+            c.interfaceTriangles.push_back(interfaceTriangles[t]);
+        }
+    }
+    return c;
 }
 
 } // End anonymous namespace
@@ -299,48 +356,26 @@ pmsh::partitionVolumeResult pmsh::meshVolumeInPieces
     joined.minDihedral = 180;
     joined.attempts = 0;
     joined.nCalls = 0;
+    // A progress line at most every progressInterval(), as a long attempt
+    // gets: a rank's many short pieces would otherwise leave the log
+    // silent for the whole stage
+    using clock = std::chrono::steady_clock;
+    const clock::time_point start = clock::now();
+    clock::time_point lastLine = start;
+    const double interval = progressInterval();
     for (const auto& [key, ofKey] : trianglesOf)
     {
         const label piece = key/nZones;
         const label zone = key % nZones;
 
-        // The closed surface's points, in the surface's order; with pieces
-        // in the order of their ids, so that a piece is meshed alike
-        // whatever else its rank holds
-        std::vector<label> global;
-        for (label t : ofKey)
-        {
-            global.insert(global.end(), surfaceTriangles[t].begin(), surfaceTriangles[t].end());
-        }
-        std::sort(global.begin(), global.end());
-        global.erase(std::unique(global.begin(), global.end()), global.end());
-        if (pieces)
-        {
-            std::sort
-            (
-                global.begin(), global.end(),
-                [&](label a, label b) { return closed.pointIds[a] < closed.pointIds[b]; }
-            );
-        }
-        std::unordered_map<label, label> local;
-        std::vector<point3> points;
-        for (label v : global)
-        {
-            local.emplace(v, label(points.size()));
-            points.push_back(surfacePoints[v]);
-        }
-        std::vector<triVerts> triangles;
+        closedPiece surface = closedPieceOf
+        (
+            surfacePoints, surfaceTriangles, ofKey, parameters.interfaceTriangles,
+            pieces ? &closed.pointIds : nullptr
+        );
+        std::vector<label>& global = surface.global;
         volumeMeshParameters p = parameters;
-        p.interfaceTriangles.clear();
-        for (label t : ofKey)
-        {
-            const triVerts& tri = surfaceTriangles[t];
-            triangles.push_back({local.at(tri[0]), local.at(tri[1]), local.at(tri[2])});
-            if (!parameters.interfaceTriangles.empty())
-            {
-                p.interfaceTriangles.push_back(parameters.interfaceTriangles[t]);
-            }
-        }
+        p.interfaceTriangles = std::move(surface.interfaceTriangles);
 
         const std::string name =
             std::string(pieces ? "piece " + std::to_string(piece) : "")
@@ -354,14 +389,14 @@ pmsh::partitionVolumeResult pmsh::meshVolumeInPieces
         const std::filesystem::path file(failedSurfaceFile);
         partitionVolumeResult part = meshVolumeWithFallbacks
         (
-            meshers, points, triangles, p,
+            meshers, surface.points, surface.triangles, p,
             (file.parent_path()/(file.stem().string() + "_" + suffix
           + file.extension().string())).string(),
             advice
         );
 
         // Interior points follow the surface points of every piece before
-        for (std::size_t v = points.size(); v < part.mesh.points.size(); ++v)
+        for (std::size_t v = surface.points.size(); v < part.mesh.points.size(); ++v)
         {
             global.push_back(label(joined.mesh.points.size()));
             joined.mesh.points.push_back(part.mesh.points[v]);
@@ -390,6 +425,21 @@ pmsh::partitionVolumeResult pmsh::meshVolumeInPieces
         joined.minDihedral = std::min(joined.minDihedral, part.minDihedral);
         joined.maxDihedral = std::max(joined.maxDihedral, part.maxDihedral);
         joined.maxAspectRatio = std::max(joined.maxAspectRatio, part.maxAspectRatio);
+
+        const clock::time_point now = clock::now();
+        if (std::chrono::duration<double>(now - lastLine).count() >= interval)
+        {
+            lastLine = now;
+            logMesherLine
+            (
+                msg() << parameters.what << ": " << joined.nCalls << " of "
+                    << trianglesOf.size()
+                    << (pieces ? (zoned ? " pieces and zones" : " pieces") : " zones")
+                    << " meshed, "
+                    << joined.mesh.tets.size() << " cells, "
+                    << std::lround(std::chrono::duration<double>(now - start).count()) << " s"
+            );
+        }
     }
     joined.nCells = label(joined.mesh.tets.size());
     joined.attempts = std::max(joined.attempts, 1);
