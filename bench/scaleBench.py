@@ -283,10 +283,11 @@ def write_coarse_markdown(args, res):
 # --massive
 # ---------------------------------------------------------------------------
 
-# sphere.geo at maxCellSize 0.3, r = 5 gave 19.3 million cells with hxt on 2
-# ranks (coarse mesher netgen): cells scale with 1/maxCellSize^3
+# sphere.geo at maxCellSize 0.1679, r = 5 gave 104.1 million cells with hxt
+# on 2 ranks in pieces of 2M (2026-11-30; 107.0M in one call a rank at
+# 90986d7): cells scale with 1/maxCellSize^3
 MASSIVE = {"geometry": "sphere", "levels": 5, "ranks": 2, "targetCells": 110e6,
-           "reference": (0.3, 19.3e6)}
+           "reference": (0.1679, 104.1e6)}
 
 # checkMesh -parallel peaked at 3.9 GB per rank on 9.7 million cells per rank
 CHECKMESH_BYTES_PER_CELL = 420.0
