@@ -11,8 +11,7 @@
 #include "cubeMesh.H"
 #include "surfaceChecks.H"
 #include "meshPatch.H"
-
-#include "messageStream.H"
+#include "quietFoamInfo.H"
 
 #include <gtest/gtest.h>
 
@@ -27,19 +26,7 @@ namespace
 {
 
 // Quiet OpenFOAM's Info ("Selecting decompositionMethod ...")
-class pieces : public ::testing::Test
-{
-    int infoLevel_ = Foam::messageStream::level;
-protected:
-    void SetUp() override
-    {
-        Foam::messageStream::level = 0;
-    }
-    void TearDown() override
-    {
-        Foam::messageStream::level = infoLevel_;
-    }
-};
+class pieces : public test::quietFoamInfo {};
 
 std::vector<label> piecesOfCube(const CoarseMesh& m, label nPieces)
 {

@@ -7,6 +7,7 @@
 #include "partitionSurface.H"
 #include "Geometry.H"
 #include "cubeMesh.H"
+#include "quietFoamInfo.H"
 #include "surfaceChecks.H"
 #include "testPaths.H"
 #include "testUtilities.H"
@@ -77,19 +78,7 @@ void expectGoodPartition
 
 // Quiet OpenFOAM's Info ("Selecting decompositionMethod ...") in the tests
 // of this file
-class decomposition : public ::testing::Test
-{
-    int infoLevel_ = Foam::messageStream::level;
-protected:
-    void SetUp() override
-    {
-        Foam::messageStream::level = 0;
-    }
-    void TearDown() override
-    {
-        Foam::messageStream::level = infoLevel_;
-    }
-};
+class decomposition : public test::quietFoamInfo {};
 
 
 // The tests of the repair (and of the default method): quiet as well
