@@ -12,11 +12,14 @@
 #include "surfaceChecks.H"
 #include "meshPatch.H"
 #include "quietFoamInfo.H"
+#include "testMeshers.H"
+#include "testUtilities.H"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 
@@ -32,6 +35,65 @@ std::vector<label> piecesOfCube(const CoarseMesh& m, label nPieces)
 {
     return partitionCells(m, nPieces);
 }
+
+
+//- Fails the first attempt on one piece, as a mesher may fail on one
+//  surface; meshes everything else as HXT does
+class failsOnePieceOnceMesher : public VolumeMesher
+{
+    const std::unique_ptr<VolumeMesher> hxt_ = VolumeMesher::New("hxt");
+    const std::string piece_;
+
+public:
+
+    explicit failsOnePieceOnceMesher(label piece)
+    :
+        piece_(", piece " + std::to_string(piece))
+    {}
+
+    std::string name() const override { return "failsOnePieceOnce"; }
+
+protected:
+
+    std::string title() const override { return "The mesher that fails one piece once"; }
+
+    TetMesh generate
+    (
+        const std::vector<point3>& points, const std::vector<triVerts>& triangles,
+        const volumeMeshParameters& parameters
+    ) const override
+    {
+        if (parameters.pointOrder == 0 && parameters.what.find(piece_) != std::string::npos)
+        {
+            throw FatalError("cannot mesh " + parameters.what);
+        }
+        return hxt_->mesh(points, triangles, parameters);
+    }
+};
+
+
+//- The cube's coarse mesh in 3 pieces, one part: its fine surface at r = 1
+struct cubeInPieces
+{
+    CoarseMesh coarse = test::cubeMesh(3);
+    std::vector<label> cellPiece = partitionCells(coarse, 3);
+    FineSurface surface = refinePartSurface(coarse, {}, 0, nullptr, 1, cellPiece);
+
+    partitionVolumeResult mesh
+    (
+        std::vector<std::unique_ptr<VolumeMesher>> meshers,
+        const std::string& failedFile
+    ) const
+    {
+        volumeMeshParameters p;
+        p.what = "partition 0";
+        return meshVolumeInPieces
+        (
+            meshers, surface.points, surface.triangles,
+            {surface.zone, {}, surface.piece, surface.ids}, p, failedFile, "Try another mesher."
+        );
+    }
+};
 
 } // End anonymous namespace
 
@@ -191,4 +253,59 @@ TEST_F(pieces, aPartMeshedInPiecesIsOneConformingMeshOfItsVolume)
         }
         EXPECT_EQ(nBoundary, m.boundary.size()*4) << backend;
     }
+}
+
+
+TEST_F(pieces, aPieceThatFailsIsRetriedAloneAndTheOthersKeepTheirFirstMesh)
+{
+    const cubeInPieces cube;
+    const partitionVolumeResult r = cube.mesh
+    (
+        test::meshers(std::make_unique<failsOnePieceOnceMesher>(1)),
+        (std::filesystem::path(::testing::TempDir())/"unused.stl").string()
+    );
+    EXPECT_EQ(r.nCalls, 3);
+    EXPECT_EQ(r.attempts, 2) << "piece 1 needed a second attempt";
+    EXPECT_HAS(r.failures, "piece 1:");
+    EXPECT_HAS(r.failures, "cannot mesh partition 0, piece 1");
+    EXPECT_EQ(r.failures.find("piece 0"), std::string::npos) << r.failures;
+    EXPECT_EQ(r.failures.find("piece 2"), std::string::npos) << r.failures;
+    double volume = 0;
+    for (const tetVerts& t : r.mesh.tets)
+    {
+        const std::vector<point3>& x = r.mesh.points;
+        volume += tetVolume6(x[t[0]], x[t[1]], x[t[2]], x[t[3]])/6;
+    }
+    EXPECT_NEAR(volume, 1.0, 1e-9);
+}
+
+
+TEST_F(pieces, aPieceThatFailsEverywhereIsNamedAndItsSurfaceWritten)
+{
+    const cubeInPieces cube;
+    const std::string file =
+        (std::filesystem::path(::testing::TempDir())/"failedPartition0.stl").string();
+    const std::string pieceFile =
+        (std::filesystem::path(::testing::TempDir())/"failedPartition0_piece0.stl").string();
+    std::filesystem::remove(pieceFile);
+    const std::string m = test::errorOf([&]
+    {
+        cube.mesh(test::meshers(std::make_unique<test::failingMesher>()), file);
+    });
+    EXPECT_HAS(m, "Volume meshing of partition 0, piece 0 failed in all");
+    EXPECT_HAS(m, pieceFile);
+    EXPECT_HAS(m, "Try another mesher.");
+
+    // The file holds that piece's closed surface alone
+    std::size_t pieceTriangles = 0;
+    for (label p : cube.surface.piece)
+    {
+        pieceTriangles += p == 0;
+    }
+    std::ifstream is(pieceFile);
+    ASSERT_TRUE(is.good()) << pieceFile;
+    std::size_t facets = 0;
+    for (std::string w; is >> w; ) facets += (w == "facet");
+    EXPECT_EQ(facets, pieceTriangles);
+    EXPECT_LT(facets, cube.surface.triangles.size());
 }
