@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 using Foam::Info;
 
@@ -26,8 +27,8 @@ pmsh::label pmsh::numberOfPieces
     if (layered)
     {
         Info<< "    prism layers: each rank meshes its part in one volume-mesher"
-            << " call, of about " << label(expectedTets/nRanks) << " fine cells"
-            << " (maxPieceCells " << label(maxPieceCells) << " applies to meshes"
+            << " call, of about " << std::int64_t(expectedTets/nRanks) << " fine cells"
+            << " (maxPieceCells " << std::int64_t(maxPieceCells) << " applies to meshes"
             << " without layers)\n";
         return nRanks;
     }
