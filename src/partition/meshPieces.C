@@ -46,10 +46,8 @@ pmsh::meshPieces pmsh::partitionIntoPieces
 )
 {
     meshPieces pieces;
-    pieces.nPieces = nPieces;
     if (nPieces <= comm.size())
     {
-        pieces.nPieces = comm.size();
         pieces.cellPart =
             partitionCoarseMesh(comm, coarse, decompositionDict, fineWeights);
         return pieces;

@@ -17,22 +17,22 @@ pmsh::coarsePartSurface pmsh::partitionSurface
 
     coarsePartSurface surf;
     auto pieceOf = [&](label cell) { return cellPiece.empty() ? 0 : cellPiece[cell]; };
-    label celli = 0;
-    auto add = [&](const triVerts& f, label region, label surface, label zone)
+    // A face of `cell`, with the zone and piece behind it
+    auto add = [&](const triVerts& f, label region, label surface, label cell)
     {
         surf.faces.push_back(f);
         surf.region.push_back(region);
         surf.surface.push_back(surface);
         if (zoned)
         {
-            surf.zone.push_back(zone);
+            surf.zone.push_back(coarse.zoneOf(cell));
         }
         if (!cellPiece.empty())
         {
-            surf.piece.push_back(cellPiece[celli]);
+            surf.piece.push_back(cellPiece[cell]);
         }
     };
-    for (; celli < coarse.nCells(); ++celli)
+    for (label celli = 0; celli < coarse.nCells(); ++celli)
     {
         if (partOf(celli) != myPart)
         {
@@ -46,7 +46,7 @@ pmsh::coarsePartSurface pmsh::partitionSurface
             if (isBoundaryNeighbour(nbr))
             {
                 const coarseBoundaryFace& bf = coarse.boundary[boundaryFaceOf(nbr)];
-                add(faces[fi], bf.patch, bf.surface, zone);
+                add(faces[fi], bf.patch, bf.surface, celli);
                 continue;
             }
             const bool otherPart = partOf(nbr) != myPart;
@@ -77,7 +77,7 @@ pmsh::coarsePartSurface pmsh::partitionSurface
             (
                 faces[fi],
                 otherPart ? interfaceRegion(partOf(nbr)) : betweenZonesRegion,
-                surface, zone
+                surface, celli
             );
         }
     }

@@ -377,14 +377,16 @@ pmsh::partitionVolumeResult pmsh::meshVolumeInPieces
         volumeMeshParameters p = parameters;
         p.interfaceTriangles = std::move(surface.interfaceTriangles);
 
-        const std::string name =
-            std::string(pieces ? "piece " + std::to_string(piece) : "")
-          + (pieces && zoned ? ", " : "")
-          + (zoned ? "zone " + closed.zoneNames[zone] : "");
-        const std::string suffix =
-            std::string(pieces ? "piece" + std::to_string(piece) : "")
-          + (pieces && zoned ? "_" : "")
-          + (zoned ? closed.zoneNames[zone] : "");
+        // "piece 3, zone fluid" in messages, "piece3_fluid" in file names
+        const auto named = [&](const char* pieceWord, const char* join, const char* zoneWord)
+        {
+            return
+                std::string(pieces ? pieceWord + std::to_string(piece) : "")
+              + (pieces && zoned ? join : "")
+              + (zoned ? zoneWord + closed.zoneNames[zone] : "");
+        };
+        const std::string name = named("piece ", ", ", "zone ");
+        const std::string suffix = named("piece", "_", "");
         p.what = parameters.what + ", " + name;
         const std::filesystem::path file(failedSurfaceFile);
         partitionVolumeResult part = meshVolumeWithFallbacks
