@@ -87,10 +87,11 @@ pmsh::CoarseMesh pmsh::Geometry::localSizedMesh
         return netgenMesh(parameters, surfaceOnly);
     }
 
-    // The first surface mesh needs no patch sizes, only the patches
+    // The first surface mesh needs no patch or gap sizes, only the patches
     coarseMeshParameters first = parameters;
     first.patchMaxCellSize = nullptr;
     first.sizePoints.clear();
+    first.cellsAcrossGap = 0;
     const CoarseMesh surface = netgenMesh(first, true);
 
     std::vector<double> patchSize(surface.patches.size());

@@ -395,6 +395,13 @@ pmsh::CoarseMesh pmsh::stlGeometry::netgenMesh
     mp.surfaceOnly = surfaceOnly;
     mp.regions = parameters.regions;
     mp.sizePoints = parameters.sizePoints;
+    if (parameters.cellsAcrossGap > 0)
+    {
+        const gapSizing gaps =
+            gapSizes(parameters.cellsAcrossGap, localTriangleSizes(parameters));
+        gaps.log(parameters.cellsAcrossGap);
+        mp.sizePoints.insert(mp.sizePoints.end(), gaps.points.begin(), gaps.points.end());
+    }
     ng::volumeMesh m = retriedStlMesh(*this, mp, parameters, what_);
 
     // Netgen's boundary vertices lie on the STL up to rounding; a vertex is

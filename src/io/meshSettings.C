@@ -545,6 +545,56 @@ std::string readCoarseSurface
     return route;
 }
 
+
+//- The entries that size the coarse surface of surface files (curvature,
+//  its floor, gaps) and bound the time Netgen may take on it.
+void readSurfaceSizing(const Foam::dictionary& dict, meshSettings& s)
+{
+    // Default 3: a ball of radius 0.5 at maxCellSize 1 then gets 120
+    // coarse faces from its STL (mean edge 0.24), as from CSG, where
+    // Netgen always sizes by curvature (128, 0.23); with 0 or 2 it gets 70
+    // (0.31), whatever the global size
+    s.curvatureRefinement = check.bounded
+    (
+        dict, "curvatureRefinement", 3, 0, 100, false,
+        "Valid values are numbers 0 <= curvatureRefinement <= 100: coarse"
+        " cells per radian of STL surface curvature (0 = off)"
+    );
+
+    // The floor of curvature sizing: without one a finely tessellated
+    // fillet or tip asks for cells far below maxCellSize and the coarse
+    // mesh (and every level after it) blows the budget. maxCellSize/8:
+    // bench/results/curvature.md
+    std::ostringstream validMinCellSize;
+    validMinCellSize
+        << "Valid values are numbers 0 < minCellSize <= maxCellSize ("
+        << s.maxCellSize << "): the smallest coarse cell size that STL"
+        << " curvature sizing may ask for (default maxCellSize/8)";
+    s.minCellSize = check.bounded
+    (
+        dict, "minCellSize", s.maxCellSize/8, aboveZero,
+        s.maxCellSize, false, validMinCellSize.str()
+    );
+
+    s.cellsAcrossGap = check.bounded
+    (
+        dict, "cellsAcrossGap", meshSettings().cellsAcrossGap, 0, 100, false,
+        "Valid values are numbers 0 <= cellsAcrossGap <= 100: coarse cells"
+        " across a gap of the domain narrower than the local size (0 = off)"
+    );
+
+    // 0 (absent): from the STL's size, when it is known (stlGeometry)
+    s.coarseTimeLimit = check.bounded
+    (
+        dict, "coarseTimeLimit", 0, aboveZero, 1e7,
+        false,
+        "Valid values are numbers 0 < coarseTimeLimit <= 1e7: the seconds each"
+        " attempt of Netgen's STL coarse mesh may take (all attempts together"
+        " twice that); without the entry, from the surface's size"
+    );
+}
+
+
 } // End anonymous namespace
 
 
@@ -557,6 +607,7 @@ std::vector<std::string> meshSettingsEntries()
         "geometry", "maxCellSize", "grading", "refinementLevels",
         "coarseMesher", "volumeMesher", "optimisationSteps",
         "volumeMesherThreads", "maxPieceCells", "curvatureRefinement", "minCellSize",
+        "cellsAcrossGap",
         "coarseTimeLimit", "coarseSurface", "patches", "refinementRegions",
         "domain"
     };
@@ -671,42 +722,7 @@ meshSettings readMeshSettings
         " cells one volume-mesher call meshes at most"
     );
 
-    // Default 3: a ball of radius 0.5 at maxCellSize 1 then gets 120
-    // coarse faces from its STL (mean edge 0.24), as from CSG, where
-    // Netgen always sizes by curvature (128, 0.23); with 0 or 2 it gets 70
-    // (0.31), whatever the global size
-    s.curvatureRefinement = check.bounded
-    (
-        dict, "curvatureRefinement", 3, 0, 100, false,
-        "Valid values are numbers 0 <= curvatureRefinement <= 100: coarse"
-        " cells per radian of STL surface curvature (0 = off)"
-    );
-
-    // The floor of curvature sizing: without one a finely tessellated
-    // fillet or tip asks for cells far below maxCellSize and the coarse
-    // mesh (and every level after it) blows the budget. maxCellSize/8:
-    // bench/results/curvature.md
-    std::ostringstream validMinCellSize;
-    validMinCellSize
-        << "Valid values are numbers 0 < minCellSize <= maxCellSize ("
-        << s.maxCellSize << "): the smallest coarse cell size that STL"
-        << " curvature sizing may ask for (default maxCellSize/8)";
-    s.minCellSize = check.bounded
-    (
-        dict, "minCellSize", s.maxCellSize/8, aboveZero,
-        s.maxCellSize, false, validMinCellSize.str()
-    );
-
-    // 0 (absent): from the STL's size, when it is known (stlGeometry)
-    s.coarseTimeLimit = check.bounded
-    (
-        dict, "coarseTimeLimit", 0, aboveZero, 1e7,
-        false,
-        "Valid values are numbers 0 < coarseTimeLimit <= 1e7: the seconds each"
-        " attempt of Netgen's STL coarse mesh may take (all attempts together"
-        " twice that); without the entry, from the surface's size"
-    );
-
+    readSurfaceSizing(dict, s);
     s.coarseSurface = readCoarseSurface(dict, s.geometryFiles);
 
     if (const entry* e = foam::findEntry(dict, "patches"))

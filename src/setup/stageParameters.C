@@ -50,6 +50,7 @@ pmsh::coarseMeshParameters pmsh::coarseParameters
     p.regions = settings.refinementRegions;
     p.curvatureRefinement = settings.curvatureRefinement;
     p.minCellSize = settings.minCellSize;
+    p.cellsAcrossGap = settings.cellsAcrossGap;
     p.coarseTimeLimit = settings.coarseTimeLimit;
     p.coarseSurface = settings.coarseSurface;
     if (settings.hasPatchSizes())

@@ -1,7 +1,9 @@
 """Local cell sizes end to end: refinementRegions (box, sphere, cylinder)
 and a patch maxCellSize change the cell size where they say, serial and
 on 2 ranks, measured on the written polyMesh: the mean edge length inside
-a region (on a patch) against far outside it (on another patch).
+a region (on a patch) against far outside it (on another patch). Gap
+sizing fills a slot narrower than the cells round it with cells of the
+slot's width.
 
 Run one test:  python3 testLocalSizes.py localSizes.test_regionsSerial
 """
@@ -13,7 +15,7 @@ import sys
 import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from foamCase import CaseTest  # noqa: E402
+from foamCase import CaseTest, read_check_mesh  # noqa: E402
 
 # A channel with one region of each type, 2 m apart: sizes 4x below the
 # global one inside them
@@ -41,6 +43,21 @@ tlo fluid;
 """
 BODY_GLOBAL = 0.8
 BODY_SIZE = 0.1
+
+# Two unit blocks 0.06 apart (tests/data/geometry/twoBlocksWithASlot.stl)
+# in a domain box, the blocks' patches at 0.2: the slot is 0.3 of the
+# cells round it
+SLOT_WIDTH = 0.06
+SLOT_DICT = """maxCellSize 0.5;
+refinementLevels 1;
+volumeMesher hxt;
+domain { type box; min (-1 -1 -1); max (3.06 2 2); patches { default farfield; } }
+patches
+{
+    farfield { type patch; }
+    "block.*" { type wall; maxCellSize 0.2; }
+}
+"""
 
 
 def inside_box(p, lo, hi, margin=0.0):
@@ -183,6 +200,41 @@ class localSizes(CaseTest):
             requested / 1.6 <= ratio <= requested * 1.6,
             "body faces' mean edge %.4g vs farfield's %.4g: ratio %.3g,"
             " requested %.3g" % (mean["body"], mean["farfield"], ratio, requested))
+
+    def slot_mesh(self, cells_across):
+        """The slot's case meshed on 2 ranks: (mean edge length of the
+        edges inside the slot, away from its rims; checkMesh's figures;
+        pmshFoam's log)"""
+        c = self.geometry_case("twoBlocksWithASlot.stl")
+        with open(os.path.join(c.dir, "system/pmshDict"), "w") as f:
+            f.write("FoamFile { version 2.0; format ascii; class dictionary;"
+                    " object pmshDict; }\n"
+                    'geometry "constant/geometry/twoBlocksWithASlot.stl";\n'
+                    + SLOT_DICT + "cellsAcrossGap %g;\n" % cells_across)
+        _, log = c.run("pmshFoam", np=2)
+        check = read_check_mesh(c.check_mesh(np=2))
+
+        def classify(p):
+            inside = 1 < p[0] < 1 + SLOT_WIDTH and all(0.1 < p[k] < 0.9 for k in (1, 2))
+            return "slot" if inside else None
+
+        mean, _ = mean_edge_lengths(c, 2, classify)
+        return mean["slot"], check, log
+
+    def test_aSlotNarrowerThanTheCellsGetsCellsAsWideAsItOnTwoRanks(self):
+        """Without gap sizing the slot holds one coarse tet across, flat
+        as the slot: its edges 1.6x its width, max non-orthogonality 72;
+        with it 0.71x and 56 (measured)"""
+        edge, check, log = self.slot_mesh(1)
+        self.assertIn("gap sizing (cellsAcrossGap 1): 4 STL triangles face another", log)
+        off_edge, off_check, off_log = self.slot_mesh(0)
+        self.assertNotIn("gap sizing", off_log)
+        print("slot's mean edge: %.4g with gap sizing, %.4g without (width %g); max"
+              " non-orthogonality %.1f, %.1f" % (edge, off_edge, SLOT_WIDTH,
+                                                 check["maxNonOrtho"], off_check["maxNonOrtho"]))
+        self.assertLess(edge, 1.15 * SLOT_WIDTH)
+        self.assertGreater(off_edge, 1.4 * SLOT_WIDTH)
+        self.assertLess(check["maxNonOrtho"], 65)
 
     def test_patchSizeSerial(self):
         self.check_patch(1)

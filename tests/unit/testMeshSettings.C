@@ -329,7 +329,8 @@ TEST_F(meshSettingsTest, unknownEntryIsAnErrorWithASuggestion)
         err,
         "Valid entries are: geometry, maxCellSize, grading, refinementLevels,"
         " coarseMesher, volumeMesher, optimisationSteps, volumeMesherThreads,"
-        " maxPieceCells, curvatureRefinement, minCellSize, coarseTimeLimit, coarseSurface,"
+        " maxPieceCells, curvatureRefinement, minCellSize, cellsAcrossGap, coarseTimeLimit,"
+        " coarseSurface,"
         " patches, refinementRegions"
     );
 
@@ -863,6 +864,19 @@ TEST_F(meshSettingsTest, minCellSizeIsAFloorBelowMaxCellSize)
         EXPECT_HAS(err, std::string("Entry 'minCellSize' is ") + bad);
         EXPECT_HAS(err, "Valid values are numbers 0 < minCellSize <= maxCellSize");
         EXPECT_HAS(err, "STL curvature sizing");
+    }
+}
+
+TEST_F(meshSettingsTest, cellsAcrossGapHasADefaultAndIsRangeChecked)
+{
+    EXPECT_DOUBLE_EQ(read(minimal()).cellsAcrossGap, meshSettings().cellsAcrossGap);
+    EXPECT_DOUBLE_EQ(read(minimal() + "cellsAcrossGap 0;\n").cellsAcrossGap, 0);
+    EXPECT_DOUBLE_EQ(read(minimal() + "cellsAcrossGap 2.5;\n").cellsAcrossGap, 2.5);
+    for (const char* bad : {"-1", "101", "wide"})
+    {
+        const std::string err = errorFor(minimal() + "cellsAcrossGap " + bad + ";\n");
+        EXPECT_HAS(err, std::string("Entry 'cellsAcrossGap' is ") + bad);
+        EXPECT_HAS(err, "Valid values are numbers 0 <= cellsAcrossGap <= 100");
     }
 }
 

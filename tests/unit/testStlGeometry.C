@@ -1,11 +1,13 @@
 // Geometry from STL: the reader (ascii and binary, solids, shells and every
 // input error), coarse meshes through Netgen, patches and regions,
-// projection onto the facets, and the curvature sizes.
+// projection onto the facets, and the curvature and gap sizes.
 
 #include "geometryTests.H"
+#include "boxTree.H"
 #include "surfaceTopology.H"
 #include "coarseMeshGeneration.H"
 #include "csgGeometry.H"
+#include "domainBox.H"
 #include "stlGeometry.H"
 #include "stlReader.H"
 #include "surfaceFiles.H"
@@ -686,6 +688,122 @@ TEST(stlGeometry, curvatureSizesGrowAwayFromAFeatureAsGradingAllows)
         }
         EXPECT_GT(largest, smallest) << grading;
     }
+}
+
+
+// The ray query finds what trying every triangle finds: random segments
+// from inside the unit sphere's facets, their first hit and its distance.
+TEST(boxTree, aRayMeetsTheTriangleThatTryingEveryOneFinds)
+{
+    const stlSurface s = readStl(dataDir + "sphere.stl");
+    std::vector<boxTree::entry> entries;
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        entries.push_back(triangleEntry(s, t));
+    }
+    const boxTree tree(entries);
+    const auto hit = [&](label t, const point3& x, const vector3& dir)
+    {
+        const triVerts& f = s.triangles[t];
+        return rayHitsTriangle(x, dir, s.points[f[0]], s.points[f[1]], s.points[f[2]]);
+    };
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> u(-0.5, 0.5);
+    label nHits = 0;
+    for (int i = 0; i < 500; ++i)
+    {
+        const point3 x{u(random), u(random), u(random)};
+        vector3 dir{u(random), u(random), u(random)};
+        dir = (1/std::sqrt(magSqr(dir)))*dir;
+        for (const double length : {0.3, 2.0})
+        {
+            label everyFirst = -1;
+            double everyDistance = length;
+            for (label t = 0; t < s.nTriangles(); ++t)
+            {
+                const double d = hit(t, x, dir);
+                if (d > 0 && d <= everyDistance)
+                {
+                    everyDistance = d;
+                    everyFirst = t;
+                }
+            }
+            label first = -1;
+            double reach = length;
+            tree.alongRay
+            (
+                x, dir, reach,
+                [&](label t)
+                {
+                    const double d = hit(t, x, dir);
+                    if (d > 0 && d <= reach)
+                    {
+                        reach = d;
+                        first = t;
+                    }
+                }
+            );
+            EXPECT_EQ(first, everyFirst) << str(x) << ' ' << length;
+            EXPECT_EQ(reach, everyDistance) << str(x) << ' ' << length;
+            nHits += first >= 0;
+        }
+    }
+    // Every long segment leaves the sphere; short ones mostly do not
+    EXPECT_GT(nHits, 500);
+    EXPECT_LT(nHits, 1000);
+}
+
+
+// Gap sizing: the two faces of a slot 0.06 wide between two blocks in a
+// domain box face each other; at a local size of 0.15 they ask for the
+// gap over cellsAcrossGap, never below a quarter of the local size, and
+// nothing else does (the box is a block's length away). A gap wider than
+// cellsAcrossGap local sizes asks nothing, and one narrower than a
+// quarter of the local size is a contact, left as it is.
+TEST(stlGeometry, gapSizesNarrowASlotToTheGapOverCellsAcrossIt)
+{
+    domainBox box;
+    box.given = true;
+    box.min = {-1, -1, -1};
+    box.max = {3.06, 2, 2};
+    const stlGeometry g({dataDir + "twoBlocksWithASlot.stl"}, box);
+    const stlSurface& s = g.surface();
+    const double gap = 1.06f - 1.0;
+    const auto sizes = [&](double h) { return std::vector<double>(s.nTriangles(), h); };
+    const auto onASlotFace = [&](const point3& p)
+    {
+        return
+            (std::abs(p[0] - 1) < 1e-6 || std::abs(p[0] - 1.06f) < 1e-6)
+         && p[1] > 0 && p[1] < 1 && p[2] > 0 && p[2] < 1;
+    };
+
+    const auto one = g.gapSizes(1, sizes(0.15));
+    ASSERT_FALSE(one.points.empty());
+    for (const sizePoint& p : one.points)
+    {
+        EXPECT_TRUE(onASlotFace(p.p)) << str(p.p, 10);
+        EXPECT_NEAR(p.size, gap, 1e-6) << str(p.p, 10);
+    }
+    // The slot's four triangles, two a face, and no other
+    EXPECT_EQ(one.nTriangles, 4);
+    EXPECT_NEAR(one.narrowest, gap, 1e-6);
+    EXPECT_EQ(one.nAtFloor, 0);
+
+    // Two cells across would be 0.03: held at 0.15/4
+    const auto two = g.gapSizes(2, sizes(0.15));
+    ASSERT_FALSE(two.points.empty());
+    for (const sizePoint& p : two.points)
+    {
+        EXPECT_NEAR(p.size, 0.15/4, 1e-12);
+    }
+    EXPECT_EQ(two.nAtFloor, label(two.points.size()));
+
+    EXPECT_TRUE(g.gapSizes(1, sizes(0.04)).points.empty()) << "a gap wider than the cells";
+    // (0.9: the box's sides, a block's length away, stay out of reach)
+    const auto contact = g.gapSizes(1, sizes(0.9));
+    EXPECT_TRUE(contact.points.empty()) << "a gap under a quarter of the cells";
+    EXPECT_GT(contact.nContacts, 0);
+    EXPECT_TRUE(g.gapSizes(0, sizes(0.15)).points.empty());
 }
 
 

@@ -27,6 +27,9 @@ themselves, in a temporary directory.
                     coplanar faces without shared vertices
   twoCubesSharingAFace.stl  two unit cubes, solids "left" and "right",
                     sharing the face x = 1 (the same two triangles in both)
+  twoBlocksWithASlot.stl  two unit cubes, solids "blockA" and "blockB",
+                    outward, 0.06 apart along x: a slot of the fluid for
+                    gap sizing, with a domain box round them
 
 Coordinates are float32 values (written exactly in ascii), so the ascii and
 binary spheres hold bit-identical points."""
@@ -279,6 +282,13 @@ def two_cubes_sharing_a_face():
             ('right', points, [tuple(remap[i] for i in t) for t in rf])]
 
 
+def two_blocks_with_a_slot(gap):
+    a = closed_box((0, 0, 0), (1, 1, 1))
+    b = closed_box((1 + gap, 0, 0), (2 + gap, 1, 1))
+    v, (af, bf) = merged([a, b])
+    return [('blockA', v, af), ('blockB', v, bf)]
+
+
 def curved_wall(radius, thickness, angle, length, n_arc, n_length):
     """A closed slab bent into a cylindrical arc: outer radius `radius`,
     inner radius - thickness, `angle` radians around the z axis, z in
@@ -341,3 +351,4 @@ if __name__ == '__main__':
 
     write_ascii('roomWithDesk.stl', room_with_desk())
     write_ascii('twoCubesSharingAFace.stl', two_cubes_sharing_a_face())
+    write_ascii('twoBlocksWithASlot.stl', two_blocks_with_a_slot(0.06))
