@@ -1030,6 +1030,54 @@ TEST(wallLayers, sideQuadsBetweenTwoPartsStacksFaceTheOtherStacksPartWhenAThirdP
 }
 
 
+TEST(wallLayers, aFlatUnlayeredInletBesideThickStacksSlidesWithThemInsteadOfThinningThem)
+{
+    // Stacks 0.124 thick end on the inlet, whose outer ring of triangles
+    // is 0.125 wide: lifted alone, the rim would squash it and the stacks
+    // would thin. The inlet's points slide in its plane instead, each
+    // ring less than the one outside it
+    const int nTheta = 24, nZ = 12, L = 4;
+    const testSurface s = pipe(0.5, 2, nTheta, nZ);
+    const layerSpecification wall = spec(L, 0.02, 1.3);
+    const wallLayers layers = grow(s, {{0, wall}});
+
+    EXPECT_EQ(layers.stats.nInvalidLimited, 0);
+    EXPECT_EQ(countLayered(layers), 2*nTheta*nZ);
+    double thinnest = 1, thickest = 0;
+    for (label p = 0; p < label(s.points.size()); ++p)
+    {
+        if (layers.nLayers[p] == 0) continue;
+        thinnest = std::min(thinnest, layers.thickness[p]);
+        thickest = std::max(thickest, layers.thickness[p]);
+    }
+    EXPECT_EQ(thinnest, thickest);
+    EXPECT_NEAR(thickest, 0.02*(1 + 1.3 + 1.3*1.3 + 1.3*1.3*1.3), 1e-12);
+
+    std::map<long, double> slideAtRadius;
+    for (label p = 0; p < label(s.points.size()); ++p)
+    {
+        const point3& x = s.points[p];
+        if (x[2] != 0 || layers.nLayers[p] > 0) continue;
+        const point3 top = layers.topPoint(s.points, p);
+        EXPECT_EQ(top[2], 0) << "inlet point " << p << " left its plane";
+        const long ring = std::lround(4*std::hypot(x[0], x[1])/0.5);
+        const double moved = std::sqrt(magSqr(top - x));
+        auto it = slideAtRadius.emplace(ring, moved).first;
+        it->second = std::min(it->second, moved);
+    }
+    ASSERT_EQ(slideAtRadius.size(), std::size_t(4));     // the centre and rings 1-3
+    EXPECT_GT(slideAtRadius[3], 0.02);
+    EXPECT_GT(slideAtRadius[3], slideAtRadius[2]);
+    EXPECT_GT(slideAtRadius[2], slideAtRadius[1]);
+    for (label t = 0; t < label(s.triangles.size()); ++t)
+    {
+        if (s.region[t] != 1) continue;
+        EXPECT_GT(liftedAreaShare(s, layers, t), 0.25) << "inlet triangle " << t;
+    }
+    expectValidPrisms(s, layers);
+}
+
+
 TEST(wallLayers, interfaceCloserThanTheLayersRisesWithThemInsteadOfThinningThem)
 {
     // The interface's rings closer than the layers are thick: its lifted
@@ -1053,10 +1101,17 @@ TEST(wallLayers, interfaceCloserThanTheLayersRisesWithThemInsteadOfThinningThem)
         const testSurface& s = parts[r];
         std::vector<point3> lifted(s.points.size());
         std::vector<bool> moved(s.triangles.size(), true);
+        // The interface's points inside the domain (the flat end caps'
+        // points slide along them as well)
+        std::vector<bool> onWall(s.points.size(), false);
+        for (label t = 0; t < label(s.triangles.size()); ++t)
+        {
+            if (s.region[t] >= 0) for (const label p : s.triangles[t]) onWall[p] = true;
+        }
         for (label p = 0; p < label(s.points.size()); ++p)
         {
             lifted[p] = split[r].topPoint(s.points, p);
-            if (split[r].nLayers[p] == 0 && lifted[p] != s.points[p]) risen[r][s.ids[p]] = lifted[p];
+            if (!onWall[p] && lifted[p] != s.points[p]) risen[r][s.ids[p]] = lifted[p];
         }
         for (label t = 0; t < label(s.triangles.size()); ++t)
         {
