@@ -55,72 +55,6 @@ constexpr double decay = 0.9;
 //  points slide in it: a flat wall, projected onto exactly
 constexpr double flatCos = 0.99999;
 
-//- Per point: the unit normal of the plane in which it may slide, 0 where
-//  it may not. A point slides when it has no layers, is not inside the
-//  domain, and its wall triangles on every rank lie in one plane and one
-//  patch: it then stays on the wall, and the patch keeps its border.
-std::vector<vector3> slidingPlanes
-(
-    const layerStars& stars,
-    const wallLayers& layers,
-    const std::vector<bool>& interfaceOnly
-)
-{
-    const layerSurface& surface = stars.surface();
-    const label nPoints = surface.points.size();
-    const auto candidate = [&](label t, label p)
-    {
-        return !interfaceOnly[p] && layers.nLayers[p] == 0 && !stars.isInterface(t);
-    };
-    const auto around = stars.gather
-    (
-        [&](label t, label p, label& tag, vector3& value)
-        {
-            if (!candidate(t, p)) return false;
-            tag = 0;
-            value = normalised(stars.areaVector(t));
-            return true;
-        }
-    );
-    std::vector<vector3> normal(nPoints, vector3{0, 0, 0});
-    for (label p = 0; p < nPoints; ++p)
-    {
-        vector3 sum{0, 0, 0};
-        for (std::size_t i = 0; i < around[p].size(); ++i)
-        {
-            if (i > 0 && around[p][i].key == around[p][i - 1].key) continue;
-            sum = sum + around[p][i].value;
-        }
-        normal[p] = normalised(sum);
-    }
-    const std::vector<double> bent = stars.minimum
-    (
-        [&](label t, label p)
-        {
-            if (!candidate(t, p) || magSqr(normal[p]) == 0) return layerStars::none;
-            return dot(normalised(stars.areaVector(t)), normal[p]) >= flatCos
-                ? layerStars::none : -1.0;
-        }
-    );
-    const std::vector<double> lowest = stars.minimum
-    (
-        [&](label t, label p) { return candidate(t, p) ? double(surface.region[t]) : layerStars::none; }
-    );
-    const std::vector<double> highest = stars.minimum
-    (
-        [&](label t, label p) { return candidate(t, p) ? -double(surface.region[t]) : layerStars::none; }
-    );
-    for (label p = 0; p < nPoints; ++p)
-    {
-        if (bent[p] < 0 || lowest[p] != -highest[p])
-        {
-            normal[p] = {0, 0, 0};
-        }
-    }
-    return normal;
-}
-
-
 //- The sliding points' moves in their planes: `sweeps` Jacobi sweeps of
 //  `decay` times the mean of their wall neighbours' moves, from the lifts
 //  of the stacks' feet beside them (u), which stay fixed. Where a stack
@@ -179,12 +113,80 @@ void slideAlongFlatWalls
 } // End anonymous namespace
 
 
+// A point slides when it has no layers, is not inside the domain, and its
+// wall triangles on every rank lie in one plane and one patch: it then
+// stays on the wall, and the patch keeps its border.
+std::vector<vector3> slidingPlanes
+(
+    const layerStars& stars,
+    const wallLayers& layers,
+    const std::vector<bool>& interfaceOnly
+)
+{
+    const layerSurface& surface = stars.surface();
+    const label nPoints = surface.points.size();
+    const auto candidate = [&](label t, label p)
+    {
+        return !interfaceOnly[p] && layers.nLayers[p] == 0 && !stars.isInterface(t);
+    };
+    const auto around = stars.gather
+    (
+        [&](label t, label p, label& tag, vector3& value)
+        {
+            if (!candidate(t, p)) return false;
+            tag = 0;
+            value = normalised(stars.areaVector(t));
+            return true;
+        }
+    );
+    std::vector<vector3> normal(nPoints, vector3{0, 0, 0});
+    for (label p = 0; p < nPoints; ++p)
+    {
+        vector3 sum{0, 0, 0};
+        for (std::size_t i = 0; i < around[p].size(); ++i)
+        {
+            if (i > 0 && around[p][i].key == around[p][i - 1].key) continue;
+            sum = sum + around[p][i].value;
+        }
+        normal[p] = normalised(sum);
+    }
+    const std::vector<double> bent = stars.minimum
+    (
+        [&](label t, label p)
+        {
+            if (!candidate(t, p) || magSqr(normal[p]) == 0) return layerStars::none;
+            return dot(normalised(stars.areaVector(t)), normal[p]) >= flatCos
+                ? layerStars::none : -1.0;
+        }
+    );
+    const std::vector<double> lowest = stars.minimum
+    (
+        [&](label t, label p) { return candidate(t, p) ? double(surface.region[t]) : layerStars::none; }
+    );
+    const std::vector<double> highest = stars.minimum
+    (
+        [&](label t, label p) { return candidate(t, p) ? -double(surface.region[t]) : layerStars::none; }
+    );
+    bool any = false;
+    for (label p = 0; p < nPoints; ++p)
+    {
+        if (bent[p] < 0 || lowest[p] != -highest[p])
+        {
+            normal[p] = {0, 0, 0};
+        }
+        any = any || magSqr(normal[p]) > 0;
+    }
+    return stars.anyRank(any) ? normal : std::vector<vector3>();
+}
+
+
 std::vector<vector3> interfaceShift
 (
     const layerStars& stars,
     const wallLayers& layers,
     const std::vector<bool>& interfaceOnly,
     const std::vector<bool>& promoted,
+    const std::vector<vector3>& slidePlanes,
     double scale
 )
 {
@@ -207,8 +209,11 @@ std::vector<vector3> interfaceShift
     }
 
     // Flat walls first: their slid points then hold the interface's foot
-    const std::vector<vector3> plane = slidingPlanes(stars, layers, interfaceOnly);
-    slideAlongFlatWalls(stars, plane, u);
+    const bool slides = !slidePlanes.empty();
+    if (slides)
+    {
+        slideAlongFlatWalls(stars, slidePlanes, u);
+    }
 
     // The first ring: the points with a lifted boundary neighbour rise as
     // far as those do (their mean lift), whatever their height, so that
@@ -304,7 +309,7 @@ std::vector<vector3> interfaceShift
         {
             u[p] = scale*u[p];
         }
-        else if (magSqr(plane[p]) == 0)
+        else if (!slides || magSqr(slidePlanes[p]) == 0)
         {
             u[p] = {0, 0, 0};
         }

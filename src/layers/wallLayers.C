@@ -433,10 +433,16 @@ void validityRounds(layerState& state)
     const std::vector<bool> interfaceOnly = interfaceOnlyPoints(stars);
     std::vector<bool> promoted(nPoints, false);
     double shiftScale = 1;
+    std::vector<vector3> slidePlanes;
     for (label round = 1; ; ++round)
     {
         state.classify();
-        layers.shift = interfaceShift(stars, layers, interfaceOnly, promoted, shiftScale);
+        // Once: a point that loses its layers in the rounds stays put
+        if (round == 1) slidePlanes = slidingPlanes(stars, layers, interfaceOnly);
+        layers.shift = interfaceShift
+        (
+            stars, layers, interfaceOnly, promoted, slidePlanes, shiftScale
+        );
         const bool shrink = round <= shrinkingRounds;
         auto shrunk = [&](label p) { return shrink ? shrinkFactor*layers.thickness[p] : 0.0; };
         auto lifted = [&](label t, label p, bool interface)
