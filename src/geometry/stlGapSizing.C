@@ -4,10 +4,10 @@
 
   A slot of the domain narrower than the cells round it is spanned by one
   coarse tet, flat as the slot, and refinement halves it without making it
-  rounder: OpenFOAM's building_wtc2.obj in a box, its patch at 0.048, got
-  1,141 faces above 70 degrees and skewness 3.48 in a 0.03 x 0.02 slot.
-  The rays find such gaps from either side; Netgen's size tree then grades
-  the sizes into the gap's interior.
+  rounder: two blocks 0.06 apart, their patches at 0.2, had edges 1.6
+  times the slot's width in it and a max non-orthogonality of 71.8
+  degrees (56.4 with gap sizing). The rays find such gaps from either
+  side; Netgen's size tree then grades the sizes into the gap's interior.
 \*---------------------------------------------------------------------------*/
 
 #include "stlGeometry.H"
@@ -118,9 +118,9 @@ pmsh::stlGeometry::gapSizing pmsh::stlGeometry::gapSizes
         const point3 centre = (1.0/3.0)*(a + b + c);
         const double reach = cellsAcrossGap*h;
         bool inGap = false;
-        const auto cast = [&](const point3& start)
+        const auto cast = [&](const point3& sample)
         {
-            const point3 x = start + 1e-3*(centre - start);
+            const point3 x = sample + 1e-3*(centre - sample);
             const rayHit hit = firstHit(s, d.allTriangles, t, x, into, reach);
             if (!hit.facesBack)
             {
@@ -128,8 +128,8 @@ pmsh::stlGeometry::gapSizing pmsh::stlGeometry::gapSizes
             }
             // A gap that not even one cell of the floor size fits is a
             // contact, not a channel: refining round it only brings the
-            // two sides' points closer (the wrapped motorBike's 1e-5 gaps
-            // then gave the coarse fill slivers of aspect ratio 5e10)
+            // two sides' points closer (sized, the wrapped motorBike's
+            // 1e-5 gaps gave its coarse fill slivers of aspect ratio 5e10)
             if (hit.distance < floorFraction*h)
             {
                 ++result.nContacts;
