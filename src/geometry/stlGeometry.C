@@ -324,4 +324,31 @@ pmsh::point3 pmsh::stlGeometry::projectToEdge
 }
 
 
+std::vector<double> pmsh::stlGeometry::localTriangleSizes
+(
+    const coarseMeshParameters& parameters
+) const
+{
+    const stlSurface& s = impl_->surface;
+    std::vector<double> patchSize(s.solidNames.size(), parameters.maxCellSize);
+    if (parameters.patchMaxCellSize)
+    {
+        for (std::size_t p = 0; p < patchSize.size(); ++p)
+        {
+            const double h = parameters.patchMaxCellSize(s.solidNames[p]);
+            if (h > 0)
+            {
+                patchSize[p] = std::min(patchSize[p], h);
+            }
+        }
+    }
+    std::vector<double> size(s.nTriangles());
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        size[t] = regionSizeAt(parameters.regions, s.centroid(t), patchSize[s.solid[t]]);
+    }
+    return size;
+}
+
+
 // ************************************************************************* //

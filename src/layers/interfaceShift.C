@@ -95,14 +95,13 @@ void slideAlongFlatWalls
         for (label p = 0; p < nPoints; ++p)
         {
             if (magSqr(plane[p]) == 0) continue;
+            // Wall triangles only: each is held by one part, counted once
             vector3 sum{0, 0, 0};
-            label n = 0;
-            for (std::size_t i = 0; i < around[p].size(); ++i)
+            for (const keyedContribution& c : around[p])
             {
-                if (i > 0 && around[p][i].key == around[p][i - 1].key) continue;
-                sum = sum + around[p][i].value;
-                ++n;
+                sum = sum + c.value;
             }
+            const label n = around[p].size();
             const vector3 mean = n > 0 ? (decay/n)*sum : vector3{0, 0, 0};
             next[p] = mean - dot(mean, plane[p])*plane[p];
         }
@@ -129,12 +128,14 @@ std::vector<vector3> slidingPlanes
     {
         return !interfaceOnly[p] && layers.nLayers[p] == 0 && !stars.isInterface(t);
     };
-    const auto around = stars.gather
+    // Unit normals summed per patch: one patch, one sum (a wall triangle
+    // is held by one part, so each counts once)
+    const auto perPatch = stars.sums
     (
         [&](label t, label p, label& tag, vector3& value)
         {
             if (!candidate(t, p)) return false;
-            tag = 0;
+            tag = surface.region[t];
             value = normalised(stars.areaVector(t));
             return true;
         }
@@ -142,13 +143,10 @@ std::vector<vector3> slidingPlanes
     std::vector<vector3> normal(nPoints, vector3{0, 0, 0});
     for (label p = 0; p < nPoints; ++p)
     {
-        vector3 sum{0, 0, 0};
-        for (std::size_t i = 0; i < around[p].size(); ++i)
+        if (perPatch[p].size() == 1)
         {
-            if (i > 0 && around[p][i].key == around[p][i - 1].key) continue;
-            sum = sum + around[p][i].value;
+            normal[p] = normalised(perPatch[p][0].second);
         }
-        normal[p] = normalised(sum);
     }
     const std::vector<double> bent = stars.minimum
     (
@@ -159,18 +157,10 @@ std::vector<vector3> slidingPlanes
                 ? layerStars::none : -1.0;
         }
     );
-    const std::vector<double> lowest = stars.minimum
-    (
-        [&](label t, label p) { return candidate(t, p) ? double(surface.region[t]) : layerStars::none; }
-    );
-    const std::vector<double> highest = stars.minimum
-    (
-        [&](label t, label p) { return candidate(t, p) ? -double(surface.region[t]) : layerStars::none; }
-    );
     bool any = false;
     for (label p = 0; p < nPoints; ++p)
     {
-        if (bent[p] < 0 || lowest[p] != -highest[p])
+        if (bent[p] < 0)
         {
             normal[p] = {0, 0, 0};
         }
