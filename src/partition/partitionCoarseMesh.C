@@ -289,7 +289,10 @@ std::vector<pmsh::label> pmsh::groupPieces
         std::vector<label>& a = adjacent[p];
         std::sort(a.begin(), a.end());
         a.erase(std::unique(a.begin(), a.end()), a.end());
-        pieceNeighbours[p] = Foam::labelList(a.begin(), a.end());
+        // ESI's List (v2506) takes no pair of std iterators
+        Foam::labelList& nbrs = pieceNeighbours[p];
+        nbrs.setSize(label(a.size()));
+        std::copy(a.begin(), a.end(), nbrs.begin());
         const point3 x = (1/std::max(pieceWeight[p], 1e-300))*centre[p];
         centres[p] = Foam::point(x[0], x[1], x[2]);
     }
