@@ -322,7 +322,7 @@ static void meshCase
         pmsh::numberOfPieces
         (
             forecast.estimate.fineCells - forecast.estimate.prisms, comm.size(),
-            settings.maxPieceCells, !layerSpecs.empty()
+            settings.maxPieceCells
         )
     );
     std::vector<pmsh::label> cellPart = std::move(pieces.cellPart);

@@ -628,6 +628,9 @@ void buildStacks(const layerStars& stars, wallLayers& layers)
                 if (layers.triangleLayered[n]) continue;
                 const label region =
                     stars.isInterface(n) ? across.region(t, u, v, n) : surface.region[n];
+                // A stack of this rank across a face between its pieces:
+                // the prisms meet in internal faces, no side quads
+                if (region == interfaceRegion(stars.rank())) break;
                 for (int k = 1; k <= L; ++k)
                 {
                     layers.sideFaces.push_back

@@ -15,24 +15,11 @@ pmsh::label pmsh::numberOfPieces
 (
     double expectedTets,
     label nRanks,
-    double maxPieceCells,
-    bool layered
+    double maxPieceCells
 )
 {
     const double pieces = maxPieceCells > 0 ? std::ceil(expectedTets/maxPieceCells) : 0;
-    if (pieces <= double(nRanks))
-    {
-        return nRanks;
-    }
-    if (layered)
-    {
-        Info<< "    prism layers: each rank meshes its part in one volume-mesher"
-            << " call, of about " << std::int64_t(expectedTets/nRanks) << " fine cells"
-            << " (maxPieceCells " << std::int64_t(maxPieceCells) << " applies to meshes"
-            << " without layers)\n";
-        return nRanks;
-    }
-    return label(pieces);
+    return pieces <= double(nRanks) ? nRanks : label(pieces);
 }
 
 

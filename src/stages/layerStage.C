@@ -34,6 +34,37 @@ double gapReach(const std::map<label, layerSpecification>& specs)
     return reach;
 }
 
+//- The surface's regions as the layer kernel sees them: a face between
+//  two pieces of this rank (meshPieces.H) is a partition interface, with
+//  this rank's own region, so that it rises over the stacks as a face
+//  between two ranks does; the global mesh is then the same whether two
+//  pieces fall in one rank or in two. A face between zones stays one (a
+//  solid's wall: its two copies have different zones).
+std::vector<label> kernelRegions(const FineSurface& surface, int rank)
+{
+    std::vector<label> region(surface.region);
+    if (surface.piece.empty())
+    {
+        return region;
+    }
+    std::map<triangleKey, label> firstCopy;
+    for (label t = 0; t < label(region.size()); ++t)
+    {
+        if (!isBetweenZones(region[t])) continue;
+        const triVerts& f = surface.triangles[t];
+        triangleKey key{surface.ids[f[0]], surface.ids[f[1]], surface.ids[f[2]]};
+        std::sort(key.begin(), key.end());
+        const auto [it, first] = firstCopy.emplace(key, t);
+        if (first) continue;
+        const label twin = it->second;
+        if (surface.zone.empty() || surface.zone[twin] == surface.zone[t])
+        {
+            region[t] = region[twin] = interfaceRegion(rank);
+        }
+    }
+    return region;
+}
+
 } // End anonymous namespace
 
 
@@ -92,9 +123,10 @@ wallLayers growLayers
 )
 {
     const auto gap = std::make_shared<coarseWallGap>(coarse, specs, gapReach(specs));
+    const std::vector<label> region = kernelRegions(surface, comm.rank());
     const layerSurface wall
     {
-        surface.points, surface.ids, surface.triangles, surface.region, specs,
+        surface.points, surface.ids, surface.triangles, region, specs,
         [gap](const point3& p, const vector3& d, double skip) { return (*gap)(p, d, skip); }
     };
     if (comm.parallel())

@@ -103,20 +103,12 @@ TEST_F(pieces, theNumberOfPiecesDependsOnTheMeshNotOnTheRanks)
     // 10.5 pieces' worth of cells: 11 pieces on 1, 2, 4 and 8 ranks
     for (label ranks : {1, 2, 4, 8})
     {
-        EXPECT_EQ(numberOfPieces(10.5e6, ranks, 1e6, false), 11) << ranks << " ranks";
+        EXPECT_EQ(numberOfPieces(10.5e6, ranks, 1e6), 11) << ranks << " ranks";
     }
     // Less than a piece's worth a rank: one piece a rank, as without pieces
-    EXPECT_EQ(numberOfPieces(10.5e6, 16, 1e6, false), 16);
-    EXPECT_EQ(numberOfPieces(0.5e6, 2, 1e6, false), 2);
-    EXPECT_EQ(numberOfPieces(0.5e6, 1, 1e6, false), 1);
-}
-
-
-TEST_F(pieces, aLayeredMeshKeepsOnePieceARank)
-{
-    // Stage 3b raises the interfaces between ranks over the stacks, not
-    // the faces between the pieces of a rank
-    EXPECT_EQ(numberOfPieces(10.5e6, 2, 1e6, true), 2);
+    EXPECT_EQ(numberOfPieces(10.5e6, 16, 1e6), 16);
+    EXPECT_EQ(numberOfPieces(0.5e6, 2, 1e6), 2);
+    EXPECT_EQ(numberOfPieces(0.5e6, 1, 1e6), 1);
 }
 
 
