@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""pmshFoam at scale: bench/run --coarse | --massive | --scaling
+"""pmshFoam at scale: bench/run --coarse | --massive | --massive-layers | --scaling
 
   --coarse   stage 1 (coarse mesh) and stage 2 (partition) at 0.1, 0.5 and
              1 million coarse cells, coarseMesher netgen against hxt, on the
@@ -10,6 +10,9 @@
              time per stage, peak memory per rank, bytes per cell, write
              throughput, and OpenFOAM's checks of what was written.
              Results: bench/results/massive.md.
+  --massive-layers
+             the same ball at 50 million cells or more with 5 prism layers
+             on its wall, in pieces. Results: bench/results/massive-layers.md.
   --scaling  the same problem at P = 1, 2, 4, ..., 64 ranks (oversubscribed
              beyond the cores: work per rank, balance, messages, not time),
              per-stage serial costs, per-core rates, and a model that projects
@@ -287,7 +290,14 @@ def write_coarse_markdown(args, res):
 # on 2 ranks in pieces of 2M (2026-11-30; 107.0M in one call a rank at
 # 90986d7): cells scale with 1/maxCellSize^3
 MASSIVE = {"geometry": "sphere", "levels": 5, "ranks": 2, "targetCells": 110e6,
-           "reference": (0.1679, 104.1e6)}
+           "reference": (0.1679, 104.1e6), "results": "massive"}
+
+# The same ball with 5 prism layers on its wall: the stacks about one fine
+# wall cell thick (0.0074 against a wall edge near 0.007 at r = 5), the
+# pieces layered too. The prisms (about 5 a wall triangle) are a few per
+# cent of the cells, so the tets follow the same 1/maxCellSize^3.
+MASSIVE_LAYERS = dict(MASSIVE, targetCells=50e6, results="massive-layers",
+                      layers="layers 5; firstLayerThickness 0.001; expansionRatio 1.2;")
 
 # checkMesh -parallel peaked at 3.9 GB per rank on 9.7 million cells per rank
 CHECKMESH_BYTES_PER_CELL = 420.0
@@ -355,22 +365,38 @@ def directory_bytes(path):
     return total
 
 
-def mode_massive(args):
-    m = MASSIVE
+def add_wall_layers(case, layers):
+    """The sphere tutorial's wall patch with prism layers"""
+    path = os.path.join(case, "system", "pmshDict")
+    with open(path) as f:
+        text = f.read()
+    text, n = re.subn(r"walls\s*\{\s*type\s+wall;\s*\}",
+                      "walls { type wall; %s }" % layers, text)
+    if n != 1:
+        raise RuntimeError("%s: no 'walls { type wall; }' entry to add layers to" % path)
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def mode_massive(args, m=MASSIVE):
     geom = [g for g in GEOMETRIES if g["name"] == m["geometry"]][0]
     h_ref, cells_ref = m["reference"]
     h = round(h_ref*(cells_ref/m["targetCells"])**(1.0/3.0), 4)
-    case = pb.make_case(args.work, "massive", geom["tutorial"], h, m["levels"], "hxt")
-    pb.log("Massive: %s, maxCellSize %g, r = %d, hxt, %d ranks, binary (target %.0f M cells)"
-           % (geom["name"], h, m["levels"], m["ranks"], m["targetCells"]/1e6))
+    case = pb.make_case(args.work, m["results"], geom["tutorial"], h, m["levels"], "hxt")
+    if "layers" in m:
+        add_wall_layers(case, m["layers"])
+    pb.log("Massive: %s, maxCellSize %g, r = %d, hxt, %d ranks, binary (target %.0f M cells)%s"
+           % (geom["name"], h, m["levels"], m["ranks"], m["targetCells"]/1e6,
+              ", walls: " + m["layers"] if "layers" in m else ""))
     run = pb.Run(pb.pmsh_command(args.pmshFoam, m["ranks"], case), case, "log.pmshFoam")
     res = {"machine": pb.machine_description(args), "maxCellSize": h,
            "refinementLevels": m["levels"], "ranks": m["ranks"], "wallTime": run.wall,
-           "peakRssTreeBytes": run.max_rss, "ok": run.ok}
+           "peakRssTreeBytes": run.max_rss, "ok": run.ok, "layers": m.get("layers", "")}
+    json_name = m["results"] + ".json"
     if not run.ok:
         res["error"] = pb.first_error(run.text()) or run.tail()
         pb.log("FAILED: %s" % res["error"])
-        write_json(args, "massive.json", res)
+        write_json(args, json_name, res)
         return
     s = fc.summary(case)
     res["summary"] = s
@@ -404,8 +430,8 @@ def mode_massive(args):
     res["checkMesh"] = checks
     res["addressing"] = check_addressing(case, m["ranks"])
     pb.log("  procAddressing: %s" % ("OK" if res["addressing"]["ok"] else res["addressing"]))
-    write_json(args, "massive.json", res)
-    write_massive_markdown(args, res)
+    write_json(args, json_name, res)
+    write_massive_markdown(args, res, m["results"] + ".md")
     # A case that failed a check stays for a look
     if not args.keep and all(c["ok"] for c in checks) and res["addressing"]["ok"]:
         shutil.rmtree(case, ignore_errors=True)
@@ -416,7 +442,7 @@ def failed_checks(text):
     return [l.strip() for l in text.splitlines() if l.strip().startswith("***")]
 
 
-def write_massive_markdown(args, res):
+def write_massive_markdown(args, res, name="massive.md"):
     s = res["summary"]
     stages = [[k, fmt(v["seconds"]), "%.2f" % (v["peakMemoryBytes"]/2**30)]
               for k, v in s["stages"].items()]
@@ -428,13 +454,23 @@ def write_massive_markdown(args, res):
                fmt(c["maxNonOrtho"], 1),
                fmt(c["avgNonOrtho"], 1), fmt(c["maxSkewness"], 2)] for c in res["checkMesh"]]
     a = res["addressing"]
+    layered = bool(res.get("layers"))
+    layer_rows = [
+        "| prisms | %d |" % s["prisms"],
+        "| wall faces with all their layers | %.2f %% |"
+        % (100*min(p["coverage"] for p in s["layers"].values())),
+        "| volume-mesher calls, largest (fine cells) | %d, %d |"
+        % (sum(s["volumeMesherCallsPerRank"]), max(s["largestVolumeMesherCallPerRank"])),
+    ] if layered else []
     text = "\n".join([
-        "# Massive run: %.1f million cells on one machine, 2 ranks" % (s["fineCells"]/1e6),
+        "# Massive run%s: %.1f million cells on one machine, 2 ranks"
+        % (" with prism layers" if layered else "", s["fineCells"]/1e6),
         "",
-        "Measured by `bench/run --massive` (bench/scaleBench.py): sphere.geo, "
-        "maxCellSize %g, r = %d, volumeMesher hxt, coarseMesher %s, binary, %d ranks."
-        % (res["maxCellSize"], res["refinementLevels"], s.get("coarseMesher", "netgen"),
-           res["ranks"]),
+        "Measured by `bench/run --massive%s` (bench/scaleBench.py): sphere.geo, "
+        "maxCellSize %g, r = %d, volumeMesher hxt, coarseMesher %s, binary, %d ranks%s."
+        % ("-layers" if layered else "", res["maxCellSize"], res["refinementLevels"],
+           s.get("coarseMesher", "netgen"), res["ranks"],
+           "; the wall: `%s`" % res["layers"] if layered else ""),
         "",
         machine_table(res["machine"]),
         "",
@@ -454,6 +490,7 @@ def write_massive_markdown(args, res):
         % s["bytesPerFineCellAboveBase"],
         "| written (GiB) | %.2f |" % (res["writtenBytes"]/2**30),
         "| write throughput (MiB/s) | %.0f |" % res["writeMiBPerSecond"],
+    ] + layer_rows + [
         "",
         "## Stages",
         "",
@@ -1117,7 +1154,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     group = parser.add_mutually_exclusive_group(required=True)
-    for mode in ("coarse", "massive", "scaling"):
+    for mode in ("coarse", "massive", "massive-layers", "scaling"):
         group.add_argument("--" + mode, dest="mode", action="store_const", const=mode)
     parser.add_argument("--out", default=os.path.join(pb.BENCH_DIR, "results"))
     parser.add_argument("--work", help="scratch directory (default: a new temporary one)")
@@ -1154,7 +1191,9 @@ def main():
                                                        "coarse": "coarse-stage"}[args.mode])) as f:
             rewrite[args.mode](args, json.load(f))
         return
-    {"coarse": mode_coarse, "massive": mode_massive, "scaling": mode_scaling}[args.mode](args)
+    {"coarse": mode_coarse, "massive": mode_massive,
+     "massive-layers": lambda a: mode_massive(a, MASSIVE_LAYERS),
+     "scaling": mode_scaling}[args.mode](args)
 
 
 if __name__ == "__main__":
