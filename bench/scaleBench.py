@@ -513,7 +513,7 @@ def write_massive_markdown(args, res, name="massive.md"):
            a["facesOwnedOnce"], a["processorFacesPaired"]),
         "",
     ])
-    write_text(args, "massive.md", text)
+    write_text(args, name, text)
 
 
 # ---------------------------------------------------------------------------

@@ -195,7 +195,11 @@ std::vector<vector3> layerDirections
     {
         smoothed[p] = smoothed[p] && !slides[p];
     }
-    nSmoothed = std::count(smoothed.begin(), smoothed.end(), true);
+    nSmoothed = 0;
+    for (label p = 0; p < label(smoothed.size()); ++p)
+    {
+        nSmoothed += smoothed[p] && stars.counts(p);
+    }
     if (stars.anyRank(nSmoothed > 0))
     {
         for (int pass = 0; pass < smoothingPasses; ++pass)

@@ -28,6 +28,15 @@ layerStars::layerStars(const layerSurface& surface, layerExchange& exchange)
             sharedIds_.push_back(surface.ids[p]);
         }
     }
+    const std::vector<double> lowest = minimum
+    (
+        [this](label, label) { return double(exchange_.rank()); }
+    );
+    counted_.resize(lowest.size());
+    for (std::size_t p = 0; p < lowest.size(); ++p)
+    {
+        counted_[p] = lowest[p] == double(exchange_.rank());
+    }
 }
 
 

@@ -278,7 +278,7 @@ std::vector<double> featureAndGapThickness
             if (limit < T)
             {
                 T = limit;
-                ++stats.nFeatureLimited;
+                if (stars.counts(p)) ++stats.nFeatureLimited;
                 thinnedBy[p] = layerThinning::sharpEdge;
             }
         }
@@ -289,7 +289,7 @@ std::vector<double> featureAndGapThickness
             if (spec.maxThicknessToGapRatio*gap < T)
             {
                 T = spec.maxThicknessToGapRatio*gap;
-                ++stats.nGapLimited;
+                if (stars.counts(p)) ++stats.nGapLimited;
                 thinnedBy[p] = layerThinning::gap;
             }
         }
@@ -517,9 +517,12 @@ void validityRounds(layerState& state)
         if (interfaceLimited[p]) layers.thinnedBy[p] = layerThinning::partitionInterface;
         else if (limited[p]) layers.thinnedBy[p] = layerThinning::validity;
     }
-    layers.stats.nInvalidLimited = std::count(limited.begin(), limited.end(), true);
-    layers.stats.nInterfaceLimited =
-        std::count(interfaceLimited.begin(), interfaceLimited.end(), true);
+    for (label p = 0; p < nPoints; ++p)
+    {
+        if (!stars.counts(p)) continue;
+        layers.stats.nInvalidLimited += limited[p];
+        layers.stats.nInterfaceLimited += interfaceLimited[p];
+    }
 }
 
 

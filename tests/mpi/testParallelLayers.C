@@ -401,6 +401,10 @@ TEST(parallelLayers, thickLayersAgreeOnEveryHolderAndAwayFromInterfacesWithSeria
     const layeredCase& c = theCase();
     const grownTwins g = growTwins(walls(4, 0.012, 1.3));
     ASSERT_GT(g.one.stats.nInvalidLimited + g.one.stats.nFeatureLimited, 0);
+    // The sharp edges thin alike at any P, and the ranks' figures, summed,
+    // count each of those points once, also where two ranks hold it
+    ASSERT_GT(g.one.stats.nFeatureLimited, 0);
+    EXPECT_EQ(comm.sum(std::int64_t(g.mine.stats.nFeatureLimited)), g.one.stats.nFeatureLimited);
 
     const std::vector<int> rings = ringsFromInterface(c.part);
     label nFar = 0, nDiffer = 0;
