@@ -279,20 +279,27 @@ void pmsh::foamRankMesh::addZones(const tetPolyMesh& mesh)
 namespace
 {
 
-// Triangles as a faceCompactList (offsets, then every label), written
-// straight from a block of 3 labels a face: what CompactIOList<face>
-// writes in binary, without its copy of the faces
-class triangleFacesIO
+// The faces as a faceCompactList (offsets, then every label), written
+// straight from the block of labels the faces are views of: what
+// CompactIOList<face> writes in binary, without its copy of the faces
+class compactFacesIO
 :
     public Foam::regIOobject
 {
+    const Foam::labelList offsets_;
     const Foam::UList<Foam::label> labels_;
 
 public:
 
-    triangleFacesIO(const Foam::IOobject& io, const Foam::UList<Foam::label>& labels)
+    compactFacesIO
+    (
+        const Foam::IOobject& io,
+        Foam::labelList&& offsets,
+        const Foam::UList<Foam::label>& labels
+    )
     :
         Foam::regIOobject(io),
+        offsets_(std::move(offsets)),
         labels_(labels)
     {}
 
@@ -304,12 +311,7 @@ public:
 
     bool writeData(Foam::Ostream& os) const override
     {
-        Foam::labelList offsets(labels_.size()/3 + 1);
-        forAll(offsets, i)
-        {
-            offsets[i] = 3*i;
-        }
-        os  << offsets << labels_;
+        os  << offsets_ << labels_;
         return os.good();
     }
 };
@@ -322,16 +324,28 @@ void pmsh::foamRankMesh::write() const
     using namespace Foam;
 
     const label nFaces = mesh_->nFaces();
+    const std::size_t nLabels =
+        triangles_.empty() ? mixedFaces_.size() : std::size_t(3)*std::size_t(nFaces);
     const bool compact =
-        !triangles_.empty()
-     && mesh_->time().writeFormat() == IOstream::BINARY
+        mesh_->time().writeFormat() == IOstream::BINARY
      && nFaces > 0
-     && std::size_t(3)*std::size_t(nFaces) <= std::size_t(labelMax);
+     && nLabels > 0
+     && nLabels <= std::size_t(labelMax);
     if (!compact)
     {
         mesh_->write();
         return;
     }
+
+    // Where each face starts in the block: the faces are its views, in order
+    const faceList& meshFaces = mesh_->faces();
+    labelList offsets(nFaces + 1);
+    offsets[0] = 0;
+    forAll(meshFaces, i)
+    {
+        offsets[i + 1] = offsets[i] + meshFaces[i].size();
+    }
+    const label* block = triangles_.empty() ? mixedFaces_.data() : triangles_.front().data();
 
     IOobject& faces = const_cast<faceCompactIOList&>
     (
@@ -341,7 +355,7 @@ void pmsh::foamRankMesh::write() const
     mesh_->write();
     faces.writeOpt() = IOobject::AUTO_WRITE;
 
-    triangleFacesIO
+    compactFacesIO
     (
         IOobject
         (
@@ -353,7 +367,8 @@ void pmsh::foamRankMesh::write() const
             IOobject::NO_WRITE,
             false
         ),
-        UList<label>(const_cast<label*>(triangles_.front().data()), 3*nFaces)
+        std::move(offsets),
+        UList<label>(const_cast<label*>(block), label(nLabels))
     ).write();
 }
 
