@@ -16,6 +16,7 @@ import argparse
 import json
 import os
 import re
+import shutil
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -47,7 +48,7 @@ def bullet():
     fc.write_bullet_in_box(os.path.join(c.dir, "constant", "geometry", "bulletInBox.stl"))
     c.set_entry("system/pmshDict", "geometry", '"constant/geometry/bulletInBox.stl"')
     set_patches(c, BULLET_PATCHES)
-    fc.shutil.rmtree(os.path.join(c.dir, "0"), ignore_errors=True)
+    shutil.rmtree(os.path.join(c.dir, "0"), ignore_errors=True)
     return c
 
 
@@ -81,7 +82,7 @@ def main():
     parser.add_argument("--keep", action="store_true", help="keep the cases")
     parser.add_argument("--note", default="", help="a note in the machine table")
     parser.add_argument("--pmshFoam", default=os.environ.get("PMSH_BINARY")
-                        or fc.shutil.which("pmshFoam") or "pmshFoam")
+                        or shutil.which("pmshFoam") or "pmshFoam")
     args = parser.parse_args()
     os.environ["PMSH_BINARY"] = args.pmshFoam
     ranks = [int(r) for r in args.ranks.split(",")]

@@ -69,10 +69,7 @@ vector3 layerStars::areaVector(label t) const
 
 triangleKey layerStars::keyOf(label t) const
 {
-    const triVerts& f = surface_.triangles[t];
-    triangleKey k{surface_.ids[f[0]], surface_.ids[f[1]], surface_.ids[f[2]]};
-    std::sort(k.begin(), k.end());
-    return k;
+    return pmsh::keyOf(surface_.ids, surface_.triangles[t]);
 }
 
 

@@ -51,10 +51,7 @@ std::vector<label> kernelRegions(const FineSurface& surface, int rank)
     for (label t = 0; t < label(region.size()); ++t)
     {
         if (!isBetweenZones(region[t])) continue;
-        const triVerts& f = surface.triangles[t];
-        triangleKey key{surface.ids[f[0]], surface.ids[f[1]], surface.ids[f[2]]};
-        std::sort(key.begin(), key.end());
-        const auto [it, first] = firstCopy.emplace(key, t);
+        const auto [it, first] = firstCopy.emplace(keyOf(surface.ids, surface.triangles[t]), t);
         if (first) continue;
         const label twin = it->second;
         if (surface.zone.empty() || surface.zone[twin] == surface.zone[t])
