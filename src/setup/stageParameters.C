@@ -25,6 +25,7 @@ pmsh::volumeMeshParameters pmsh::volumeParameters
     p.grading = settings.grading;
     p.optimisationSteps = settings.optimisationSteps;
     p.netgenSmoothing = settings.optimisationSteps >= netgenSmoothingFromSteps;
+    p.mendGradients = true;
     p.threads = settings.volumeMesherThreads;
     return p;
 }

@@ -7,6 +7,7 @@
 #include "hxtBackends.H"
 #include "pmshError.H"
 #include "tetQualityPass.H"
+#include "gradientCondition.H"
 #include "meshingStep.H"
 #include "netgenInterface.H"
 
@@ -93,6 +94,14 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
             result, nSurface, surfaceTriangles,
             parameters.interfaceTriangles, parameters.optimisationSteps
         );
+        // Then the tets no face measure sees are bad for the solver: a
+        // tet of fair faces whose leastSquares gradient is badly posed
+        // seeded a local blow-up of simpleFoam (gradientCondition.H)
+        if (parameters.mendGradients)
+        {
+            reportMeshingStep("points moved where leastSquares gradients are badly posed");
+            mendGradientConditions(result, nSurface);
+        }
     }
     else
     {

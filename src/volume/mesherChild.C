@@ -44,7 +44,7 @@ bool transferRequest(const Pipe& pipe, Request& r)
         pipe(r.mesher) && pipe(r.points) && pipe(r.triangles)
      && pipe(p.maxCellSize) && pipe(p.grading)
      && pipe(p.optimisationSteps) && pipe(p.threads) && pipe(p.pointOrder)
-     && pipe(p.netgenSmoothing)
+     && pipe(p.netgenSmoothing) && pipe(p.mendGradients)
      && pipe(p.what) && pipe(p.interfaceTriangles)
      && pipe(nRegions);
     pipe.resize(p.regions, ok ? nRegions : 0);

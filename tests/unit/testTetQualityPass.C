@@ -10,6 +10,7 @@
 #include "partitionCoarseMesh.H"
 #include "surfaceRefinement.H"
 #include "testMeshers.H"
+#include "checkMeshMeasures.H"
 #include "testPaths.H"
 #include "wallCells.H"
 #include "qualityPassMeasures.H"
@@ -28,82 +29,6 @@ using namespace pmsh::test;
 
 namespace
 {
-
-//- checkMesh's worst face measures of a tet mesh, computed here apart from
-//  the pass, as OpenFOAM v1912's primitiveMeshTools::faceOrthogonality,
-//  faceSkewness and boundaryFaceSkewness do: non-orthogonality (degrees)
-//  of the faces between two tets, skewness of those and of the boundary
-//  faces. A tet's centre is the mean of its points, as OpenFOAM's.
-struct checkMeshMeasures
-{
-    double maxNonOrthogonality = 0;
-    double maxInternalSkewness = 0;
-    double maxBoundarySkewness = 0;
-    double maxSkewness() const { return std::max(maxInternalSkewness, maxBoundarySkewness); }
-};
-
-checkMeshMeasures checkMeshMeasuresOf(const TetMesh& m)
-{
-    auto centreOf = [&](const tetVerts& t)
-    {
-        return 0.25*((m.points[t[0]] + m.points[t[1]]) + (m.points[t[2]] + m.points[t[3]]));
-    };
-    // Each face by its sorted points: the tets on it
-    std::map<std::array<label, 3>, std::vector<std::size_t>> faces;
-    for (std::size_t t = 0; t < m.tets.size(); ++t)
-    {
-        for (int k = 0; k < 4; ++k)
-        {
-            std::array<label, 3> f;
-            for (int i = 0, n = 0; i < 4; ++i)
-            {
-                if (i != k) f[n++] = m.tets[t][i];
-            }
-            std::sort(f.begin(), f.end());
-            faces[f].push_back(t);
-        }
-    }
-    checkMeshMeasures worst;
-    for (const auto& [f, tets] : faces)
-    {
-        const point3 &a = m.points[f[0]], &b = m.points[f[1]], &c = m.points[f[2]];
-        const point3 fc = (1.0/3.0)*(a + b + c);
-        const point3 ownCc = centreOf(m.tets[tets[0]]);
-        vector3 area = 0.5*cross(b - a, c - a);
-        if (dot(area, fc - ownCc) < 0) area = -1.0*area;    // owner to outside
-        const vector3 Cpf = fc - ownCc;
-        vector3 d;
-        double base;
-        if (tets.size() == 2)
-        {
-            d = centreOf(m.tets[tets[1]]) - ownCc;
-            base = 0.2*std::sqrt(magSqr(d));
-            const double cosine = dot(d, area)/std::sqrt(magSqr(d)*magSqr(area));
-            worst.maxNonOrthogonality = std::max
-            (
-                worst.maxNonOrthogonality,
-                std::acos(std::min(1.0, std::max(-1.0, cosine)))*180/M_PI
-            );
-        }
-        else
-        {
-            const vector3 normal = (1/std::sqrt(magSqr(area)))*area;
-            d = dot(normal, Cpf)*normal;
-            base = 0.4*std::sqrt(magSqr(d));
-        }
-        const vector3 sv = Cpf - (dot(area, Cpf)/dot(area, d))*d;
-        const double magSv = std::sqrt(magSqr(sv));
-        double fd = base;
-        for (const point3* p : {&a, &b, &c})
-        {
-            if (magSv > 0) fd = std::max(fd, std::abs(dot((1/magSv)*sv, *p - fc)));
-        }
-        double& skew = tets.size() == 2 ? worst.maxInternalSkewness : worst.maxBoundarySkewness;
-        skew = std::max(skew, magSv/fd);
-    }
-    return worst;
-}
-
 
 //- The faces of the tets on one tet only, outward.
 std::vector<triVerts> boundaryOf(const TetMesh& m)
