@@ -205,23 +205,15 @@ public:
     conditionMender(TetMesh& m, label nFixed)
     :
         m_(m),
-        nFixed_(nFixed),
-        start_(m.points.size() + 1, 0)
+        nFixed_(nFixed)
     {
-        for (const tetVerts& c : m.tets)
-        {
-            for (label q : c) ++start_[q + 1];
-        }
-        for (std::size_t p = 0; p < m.points.size(); ++p) start_[p + 1] += start_[p];
-        pointTets_.resize(start_.back());
-        std::vector<label> fill(start_.begin(), start_.end() - 1);
-        for (label t = 0; t < label(m.tets.size()); ++t)
-        {
-            for (label q : m.tets[t]) pointTets_[fill[q]++] = t;
-        }
+        buildPointTets(m.points.size(), m.tets, start_, pointTets_);
     }
 
     bool movable(label v) const { return v >= nFixed_; }
+
+    //- The tets whose condition a move of point v changes
+    std::vector<label> ringOf(label v) const { return neighbourhoodOf(v).ring; }
 
     //- Pattern search for point v: steps along the axes from a quarter of
     //  its shortest edge, halved where no step lowers the ring's worst
@@ -299,8 +291,12 @@ pmsh::gradientConditionStats pmsh::mendGradientConditions(TetMesh& mesh, const l
     if (above.empty()) return stats;
 
     std::sort(above.rbegin(), above.rend());
-    stats.worstBefore = above.front().first;
     conditionMender mender(mesh, nFixed);
+    // A tet's condition changes only where a point of it, or of a tet
+    // across its faces, moves: the tets above and the rings of the points
+    // moved are all that can be above after
+    std::vector<label> mayStillBeAbove;
+    for (const auto& [c, t] : above) mayStillBeAbove.push_back(t);
     for (const auto& [c, t] : above)
     {
         // An earlier move may have mended it already
@@ -333,13 +329,19 @@ pmsh::gradientConditionStats pmsh::mendGradientConditions(TetMesh& mesh, const l
         {
             mesh.points[bestPoint] = best.to;
             ++stats.nMoved;
+            const std::vector<label> ring = mender.ringOf(bestPoint);
+            mayStillBeAbove.insert(mayStillBeAbove.end(), ring.begin(), ring.end());
         }
     }
 
-    for (const auto& [c, t] : tetsMaybeAbove(mesh))
+    std::sort(mayStillBeAbove.begin(), mayStillBeAbove.end());
+    mayStillBeAbove.erase
+    (
+        std::unique(mayStillBeAbove.begin(), mayStillBeAbove.end()), mayStillBeAbove.end()
+    );
+    for (label t : mayStillBeAbove)
     {
-        stats.worstAfter = std::max(stats.worstAfter, c);
-        stats.nAboveAfter += c > gradientConditionLimit;
+        stats.nAboveAfter += gradientCondition(mesh, t) > gradientConditionLimit;
     }
     return stats;
 }

@@ -91,18 +91,7 @@ void pmsh::qualityPass::passMesh::rebuild()
     quiet_.resize(n);
     newIndex = std::vector<label>();
 
-    start_.assign(points_.size() + 1, 0);
-    for (const tetVerts& c : tets_)
-    {
-        for (label p : c) ++start_[p + 1];
-    }
-    std::partial_sum(start_.begin(), start_.end(), start_.begin());
-    pointTets_.resize(start_.back());
-    std::vector<label> fill(start_.begin(), start_.end() - 1);
-    for (label t = 0; t < n; ++t)
-    {
-        for (label p : tets_[t]) pointTets_[fill[p]++] = t;
-    }
+    buildPointTets(points_.size(), tets_, start_, pointTets_);
     for (label t = 0; t < n; ++t)
     {
         for (int k = 0; k < 4; ++k)
