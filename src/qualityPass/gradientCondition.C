@@ -166,16 +166,21 @@ class conditionMender
         return worst;
     }
 
-    //- The worst badness of the faces of `star` (infinite if a tet is not
-    //  positive): checkMesh's measures as the quality pass weighs them
-    double worstFace(const std::vector<label>& star) const
+    //- The worst badness of the tets of `star` and their faces (infinite
+    //  if a tet is not positive): checkMesh's measures and flatness as the
+    //  quality pass weighs them. Flatness counts: a sliver's faces can be
+    //  fair while its leastSquares condition is too (its neighbours'
+    //  centres lie all round it), and a move that made one stopped HXT's
+    //  first attempt on OpenFOAM's motorBike (aspect ratio 3986)
+    double worstBadness(const std::vector<label>& star) const
     {
         const std::vector<point3>& p = m_.points;
         double worst = 0;
         for (label t : star)
         {
             const tetVerts& c = m_.tets[t];
-            if (!(tetVolume6(p[c[0]], p[c[1]], p[c[2]], p[c[3]]) > 0)) return qualityPass::infinite;
+            worst = std::max(worst, qualityPass::sliverBadness(p[c[0]], p[c[1]], p[c[2]], p[c[3]]));
+            if (worst == qualityPass::infinite) return worst;
             for (int k = 0; k < 4; ++k)
             {
                 const triVerts f = tetFace(c, k);
@@ -223,7 +228,7 @@ public:
     {
         const pointNeighbourhood n = neighbourhoodOf(v);
         const point3 original = m_.points[v];
-        const double faceBound = std::max(worstFace(n.star), qualityPass::visitBadness);
+        const double badnessBound = std::max(worstBadness(n.star), qualityPass::visitBadness);
         move best{worstCondition(n.ring), 0, original};
         best.after = best.before;
         double shortest2 = qualityPass::infinite;
@@ -243,7 +248,7 @@ public:
             for (const vector3& a : axes)
             {
                 m_.points[v] = best.to + h*a;
-                if (worstFace(n.star) > faceBound) continue;
+                if (worstBadness(n.star) > badnessBound) continue;
                 const double w = worstCondition(n.ring);
                 if (w < best.after)
                 {

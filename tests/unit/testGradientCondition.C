@@ -140,6 +140,19 @@ double worstFaceBadness(const TetMesh& m)
 }
 
 
+//- The flattest tet of a mesh, by the quality pass's sliver badness
+double worstSliverBadness(const TetMesh& m)
+{
+    double worst = 0;
+    for (const tetVerts& c : m.tets)
+    {
+        const auto& q = m.points;
+        worst = std::max(worst, qualityPass::sliverBadness(q[c[0]], q[c[1]], q[c[2]], q[c[3]]));
+    }
+    return worst;
+}
+
+
 //- HXT's mesh of a partition of the refined sphere, after the quality pass
 //  (as stage 4 makes it, but for the mending), with what lies across each
 //  face; its surface's points come first
@@ -184,7 +197,7 @@ TEST(gradientCondition, isTheConditionOfTheLeastSquaresMatrixOpenFOAMBuilds)
 }
 
 
-TEST(gradientCondition, movesPointsWhereTheGradientIsBadlyPosedAndKeepsSurfaceAndFaces)
+TEST(gradientCondition, movesPointsWhereTheGradientIsBadlyPosedAndKeepsSurfaceFacesAndShapes)
 {
     // Both partitions of the sphere at r = 2: HXT's tets after the pass
     // have a few above the limit (the 919k-cell sphereDrag mesh had 55)
@@ -200,6 +213,7 @@ TEST(gradientCondition, movesPointsWhereTheGradientIsBadlyPosedAndKeepsSurfaceAn
         nAboveBefore += above;
         const double worstBefore = *std::max_element(before.begin(), before.end());
         const double facesBefore = worstFaceBadness(p.mesh);
+        const double sliversBefore = worstSliverBadness(p.mesh);
         const std::vector<point3> pointsBefore = p.mesh.points;
         const std::vector<tetVerts> tetsBefore = p.mesh.tets;
         const label nSurface = label(p.surface.points.size());
@@ -223,6 +237,11 @@ TEST(gradientCondition, movesPointsWhereTheGradientIsBadlyPosedAndKeepsSurfaceAn
             worstFaceBadness(p.mesh),
             std::max(facesBefore, qualityPass::visitBadness)*(1 + 1e-9)
         );
+        EXPECT_LE
+        (
+            worstSliverBadness(p.mesh),
+            std::max(sliversBefore, qualityPass::visitBadness)*(1 + 1e-9)
+        ) << "a move made a sliver, partition " << part;
         const std::vector<double> after = conditionsOf(p.mesh);
         const label aboveAfter = label(std::count_if
         (
@@ -240,3 +259,4 @@ TEST(gradientCondition, movesPointsWhereTheGradientIsBadlyPosedAndKeepsSurfaceAn
 }
 
 // ************************************************************************* //
+
