@@ -20,13 +20,11 @@ using namespace pmsh;
 label countLatticeFolds(const std::vector<point3>& pos, int n)
 {
     auto P = [&](int i, int j) -> const point3& { return pos[j*(n + 1) + i]; };
-    const vector3 coarseNormal =
-        cross(P(n, 0) - P(0, 0), P(0, n) - P(0, 0));
+    const refinedTriangleFold folded(P(0, 0), P(n, 0), P(0, n), n);
     label nFolded = 0;
     forEachLatticeTriangle(n, [&](int i0, int j0, int i1, int j1, int i2, int j2)
     {
-        const point3& a = P(i0, j0);
-        if (turnedOrFlat(cross(P(i1, j1) - a, P(i2, j2) - a), coarseNormal, n))
+        if (folded(P(i0, j0), P(i1, j1), P(i2, j2)))
         {
             ++nFolded;
         }

@@ -286,20 +286,14 @@ pmsh::label pmsh::countFoldedTriangles
     for (std::size_t facei = 0; facei < partSurface.faces.size(); ++facei)
     {
         const triVerts& f = partSurface.faces[facei];
-        const vector3 coarseNormal = cross
+        const refinedTriangleFold folded
         (
-            coarse.points[f[1]] - coarse.points[f[0]],
-            coarse.points[f[2]] - coarse.points[f[0]]
+            coarse.points[f[0]], coarse.points[f[1]], coarse.points[f[2]], 1 << levels
         );
         for (std::size_t t = 0; t < trianglesPerFace; ++t)
         {
             const triVerts& tri = fine.triangles[facei*trianglesPerFace + t];
-            const vector3 normal = cross
-            (
-                fine.points[tri[1]] - fine.points[tri[0]],
-                fine.points[tri[2]] - fine.points[tri[0]]
-            );
-            if (turnedOrFlat(normal, coarseNormal, 1 << levels))
+            if (folded(fine.points[tri[0]], fine.points[tri[1]], fine.points[tri[2]]))
             {
                 ++nFolded;
             }
@@ -337,10 +331,9 @@ pmsh::FineSurface pmsh::refinePartSurface
         for (std::size_t facei = 0; facei < partSurface.faces.size() && where.empty(); ++facei)
         {
             const triVerts& f = partSurface.faces[facei];
-            const vector3 coarseNormal = cross
+            const refinedTriangleFold folded
             (
-                coarse.points[f[1]] - coarse.points[f[0]],
-                coarse.points[f[2]] - coarse.points[f[0]]
+                coarse.points[f[0]], coarse.points[f[1]], coarse.points[f[2]], 1 << levels
             );
             for (std::size_t t = 0; t < trianglesPerFace && where.empty(); ++t)
             {
@@ -348,7 +341,7 @@ pmsh::FineSurface pmsh::refinePartSurface
                 const point3& a = fine.points[tri[0]];
                 const point3& b = fine.points[tri[1]];
                 const point3& c = fine.points[tri[2]];
-                if (turnedOrFlat(cross(b - a, c - a), coarseNormal, 1 << levels))
+                if (folded(a, b, c))
                 {
                     const label region = partSurface.region[facei];
                     where = "at " + str((1.0/3.0)*(a + b + c)) + " on "

@@ -2,6 +2,7 @@
 // projection, and bit-identical interface vertices on both sides.
 
 #include "surfaceRefinement.H"
+#include "faceLattice.H"
 #include "Geometry.H"
 #include "meshPatch.H"
 #include "surfaceChecks.H"
@@ -415,6 +416,9 @@ namespace
 class creaseSphere : public analyticSphere
 {
 public:
+    //- keep: the share of its distance from the crease a projected point keeps
+    explicit creaseSphere(double keep = 1e-7) : keep_(keep) {}
+
     point3 projectToSurface(const point3& p, label) const override
     {
         const point3 q = (1.0/std::sqrt(magSqr(p)))*p;
@@ -423,9 +427,47 @@ public:
             return q;
         }
         const point3 onCrease{q[0], 1/std::sqrt(2.0), 1/std::sqrt(2.0)};
-        return onCrease + 1e-7*(q - onCrease);
+        return onCrease + keep_*(q - onCrease);
     }
+
+private:
+    double keep_;
 };
+
+
+// The smallest share of its coarse face's area, and of its coarse face's
+// shape quality, that a refined triangle of a part's surface has
+std::pair<double, double> smallestShares
+(
+    const CoarseMesh& m, const coarsePartSurface& ps, const FineSurface& fine, int levels
+)
+{
+    const int n = 1 << levels;
+    double area = 1, shape = 1;
+    for (std::size_t facei = 0; facei < ps.faces.size(); ++facei)
+    {
+        const triVerts& f = ps.faces[facei];
+        const point3& x0 = m.points[f[0]];
+        const point3& x1 = m.points[f[1]];
+        const point3& x2 = m.points[f[2]];
+        const vector3 coarse = cross(x1 - x0, x2 - x0);
+        for (int t = 0; t < n*n; ++t)
+        {
+            const triVerts& tri = fine.triangles[facei*n*n + t];
+            const point3& a = fine.points[tri[0]];
+            const point3& b = fine.points[tri[1]];
+            const point3& c = fine.points[tri[2]];
+            area = std::min(area, n*n*dot(cross(b - a, c - a), coarse)/magSqr(coarse));
+            shape = std::min
+            (
+                shape,
+                refinedTriangleFold::shapeQuality(a, b, c)
+               /refinedTriangleFold::shapeQuality(x0, x1, x2)
+            );
+        }
+    }
+    return {area, shape};
+}
 
 } // End anonymous namespace
 
@@ -435,36 +477,37 @@ TEST(surfaceRefinement, refinedTrianglesLyingFlatOnACreaseAreRepairedLikeFolds)
     const CoarseMesh m = octahedron();
     const creaseSphere geometry;
     const coarsePartSurface ps = partitionSurface(m, {}, 0);
-    const int levels = 2, n = 1 << levels;
-    // The smallest share of its coarse face's area a refined triangle has
-    auto smallestShare = [&](const FineSurface& fine)
-    {
-        double smallest = 1;
-        for (std::size_t facei = 0; facei < ps.faces.size(); ++facei)
-        {
-            const triVerts& f = ps.faces[facei];
-            const vector3 coarse = cross(m.points[f[1]] - m.points[f[0]], m.points[f[2]] - m.points[f[0]]);
-            for (int t = 0; t < n*n; ++t)
-            {
-                const triVerts& tri = fine.triangles[facei*n*n + t];
-                const vector3 refined = cross
-                (
-                    fine.points[tri[1]] - fine.points[tri[0]],
-                    fine.points[tri[2]] - fine.points[tri[0]]
-                );
-                smallest = std::min(smallest, n*n*dot(refined, coarse)/magSqr(coarse));
-            }
-        }
-        return smallest;
-    };
+    const int levels = 2;
 
     const FineSurface projected = refineSurface(m, ps, boundaryEdgeSurfaces(m), &geometry, levels, false);
-    EXPECT_GT(smallestShare(projected), 0);       // not turned: no fold by its sign
-    EXPECT_LT(smallestShare(projected), 1e-5);    // but flat
+    EXPECT_GT(smallestShares(m, ps, projected, levels).first, 0);       // not turned: no fold by its sign
+    EXPECT_LT(smallestShares(m, ps, projected, levels).first, 1e-5);    // but flat
 
     const FineSurface repaired = refinePartSurface(m, {}, 0, &geometry, levels);
     EXPECT_GT(repaired.repair.nPointsOff, 0);
-    EXPECT_GT(smallestShare(repaired), 1e-3);
+    EXPECT_GT(smallestShares(m, ps, repaired, levels).first, 1e-3);
+}
+
+
+TEST(surfaceRefinement, refinedSliversOnACreaseAreRepairedLikeFolds)
+{
+    // Points pulled to 5 % of their distance from a crease: the refined
+    // triangles across it keep a fair share of their area (no flat rule
+    // catches them) but become slivers, on which the volume meshers put
+    // tets with faces far from orthogonal (OpenFOAM's wrapped motorBike)
+    const CoarseMesh m = octahedron();
+    const creaseSphere geometry(0.05);
+    const coarsePartSurface ps = partitionSurface(m, {}, 0);
+    const int levels = 2;
+
+    const FineSurface projected = refineSurface(m, ps, boundaryEdgeSurfaces(m), &geometry, levels, false);
+    const auto [areaBefore, shapeBefore] = smallestShares(m, ps, projected, levels);
+    EXPECT_GT(areaBefore, 1e-3);
+    EXPECT_LT(shapeBefore, refinedTriangleFold::sliverShare);
+
+    const FineSurface repaired = refinePartSurface(m, {}, 0, &geometry, levels);
+    EXPECT_GT(repaired.repair.nPointsOff, 0);
+    EXPECT_GE(smallestShares(m, ps, repaired, levels).second, refinedTriangleFold::sliverShare);
 }
 
 
