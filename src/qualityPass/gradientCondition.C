@@ -166,21 +166,36 @@ class conditionMender
         return worst;
     }
 
-    //- The worst badness of the tets of `star` and their faces (infinite
-    //  if a tet is not positive): checkMesh's measures and flatness as the
-    //  quality pass weighs them. Flatness counts: a sliver's faces can be
-    //  fair while its leastSquares condition is too (its neighbours'
-    //  centres lie all round it), and a move that made one stopped HXT's
-    //  first attempt on OpenFOAM's motorBike (aspect ratio 3986)
-    double worstBadness(const std::vector<label>& star) const
+    //- The worst badness of the faces of the tets of `star`, and of their
+    //  flatness (infinite if a tet is not positive): checkMesh's measures
+    //  as the quality pass weighs them. Each is bounded on its own: a
+    //  sliver's faces can be fair while its leastSquares condition is too
+    //  (its neighbours' centres lie all round it), and a move that made
+    //  one stopped HXT's first attempt on OpenFOAM's motorBike (aspect
+    //  ratio 3986); one bound for both let a sliver nearby excuse a face
+    //  of skewness 4.9 (OpenFOAM's building_wtc2)
+    struct badnessOf
+    {
+        double faces = 0;
+        double flatness = 0;
+        bool within(const badnessOf& bound) const
+        {
+            return faces <= bound.faces && flatness <= bound.flatness;
+        }
+    };
+
+    badnessOf worstBadness(const std::vector<label>& star) const
     {
         const std::vector<point3>& p = m_.points;
-        double worst = 0;
+        badnessOf worst;
         for (label t : star)
         {
             const tetVerts& c = m_.tets[t];
-            worst = std::max(worst, qualityPass::sliverBadness(p[c[0]], p[c[1]], p[c[2]], p[c[3]]));
-            if (worst == qualityPass::infinite) return worst;
+            worst.flatness = std::max
+            (
+                worst.flatness, qualityPass::sliverBadness(p[c[0]], p[c[1]], p[c[2]], p[c[3]])
+            );
+            if (worst.flatness == qualityPass::infinite) return {qualityPass::infinite, qualityPass::infinite};
             for (int k = 0; k < 4; ++k)
             {
                 const triVerts f = tetFace(c, k);
@@ -192,7 +207,7 @@ class conditionMender
                     (
                         p[f[0]], p[f[1]], p[f[2]], p[c[3 - k]], p[tetApex(m_.tets[u], f)]
                     );
-                worst = std::max(worst, qualityPass::badness(measured, true));
+                worst.faces = std::max(worst.faces, qualityPass::badness(measured, true));
             }
         }
         return worst;
@@ -228,7 +243,9 @@ public:
     {
         const pointNeighbourhood n = neighbourhoodOf(v);
         const point3 original = m_.points[v];
-        const double badnessBound = std::max(worstBadness(n.star), qualityPass::visitBadness);
+        badnessOf bound = worstBadness(n.star);
+        bound.faces = std::max(bound.faces, qualityPass::visitBadness);
+        bound.flatness = std::max(bound.flatness, qualityPass::visitBadness);
         move best{worstCondition(n.ring), 0, original};
         best.after = best.before;
         double shortest2 = qualityPass::infinite;
@@ -248,7 +265,7 @@ public:
             for (const vector3& a : axes)
             {
                 m_.points[v] = best.to + h*a;
-                if (worstBadness(n.star) > badnessBound) continue;
+                if (!worstBadness(n.star).within(bound)) continue;
                 const double w = worstCondition(n.ring);
                 if (w < best.after)
                 {
