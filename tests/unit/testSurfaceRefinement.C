@@ -461,8 +461,8 @@ std::pair<double, double> smallestShares
             shape = std::min
             (
                 shape,
-                refinedTriangleFold::shapeQuality(a, b, c)
-               /refinedTriangleFold::shapeQuality(x0, x1, x2)
+                triangleShapeQuality(a, b, c)
+               /triangleShapeQuality(x0, x1, x2)
             );
         }
     }
