@@ -109,17 +109,12 @@ point3 toPoint3(const Point& x)
 }
 
 
-//- Whether flipping the edge of halfedge h (from a to b, apexes c on its
-//  side and d on the other) makes the worse of its two triangles better,
-//  with neither new triangle turned against the old pair
-bool flipImproves(const Mesh& m, const Mesh::Halfedge_index h)
+//- Whether flipping edge (a, b) of triangles (a, b, c) and (b, a, d)
+//  makes the worse of the two better, with neither new triangle, (a, d, c)
+//  and (d, b, c), turned against the old pair
+bool flipImproves(const point3& a, const point3& b, const point3& c, const point3& d)
 {
-    const point3 a = toPoint3(m.point(m.source(h)));
-    const point3 b = toPoint3(m.point(m.target(h)));
-    const point3 c = toPoint3(m.point(m.target(m.next(h))));
-    const point3 d = toPoint3(m.point(m.target(m.next(m.opposite(h)))));
     const vector3 normal = cross(b - a, c - a) + cross(a - b, d - b);
-    // After the flip: (a, d, c) and (d, b, c)
     if (!(dot(cross(d - a, c - a), normal) > 0 && dot(cross(b - d, c - d), normal) > 0))
     {
         return false;
@@ -175,7 +170,7 @@ void flipDegenerateTriangles(Mesh& m, const PatchMap& patch, const EdgeMap& cons
          && !constrained[m.edge(longest)]
             // the new edge must not exist already
          && !CGAL::halfedge(apex, otherApex, m).second
-         && (flat || flipImproves(m, longest))
+         && (flat || flipImproves(a, b, c, toPoint3(m.point(otherApex))))
         )
         {
             CGAL::Euler::flip_edge(longest, m);
@@ -273,7 +268,7 @@ remeshedShell remeshShell
     for (const auto v : m.vertices())
     {
         const Point& x = m.point(v);
-        r.points.push_back({x.x(), x.y(), x.z()});
+        r.points.push_back(toPoint3(x));
     }
     for (const Face f : m.faces())
     {

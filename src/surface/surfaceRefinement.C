@@ -238,6 +238,40 @@ public:
     }
 };
 
+//- Call visit(facei, a, b, c) for each refined triangle (a, b, c) of the
+//  part's surface that folded (refinedTriangleFold), in face order
+template<class Visit>
+void visitFoldedTriangles
+(
+    const CoarseMesh& coarse,
+    const coarsePartSurface& partSurface,
+    const FineSurface& fine,
+    int levels,
+    Visit visit
+)
+{
+    const std::size_t trianglesPerFace = std::size_t(1) << (2*levels);
+    for (std::size_t facei = 0; facei < partSurface.faces.size(); ++facei)
+    {
+        const triVerts& f = partSurface.faces[facei];
+        const refinedTriangleFold folded
+        (
+            coarse.points[f[0]], coarse.points[f[1]], coarse.points[f[2]], 1 << levels
+        );
+        for (std::size_t t = 0; t < trianglesPerFace; ++t)
+        {
+            const triVerts& tri = fine.triangles[facei*trianglesPerFace + t];
+            const point3& a = fine.points[tri[0]];
+            const point3& b = fine.points[tri[1]];
+            const point3& c = fine.points[tri[2]];
+            if (folded(a, b, c))
+            {
+                visit(facei, a, b, c);
+            }
+        }
+    }
+}
+
 } // End anonymous namespace
 
 
@@ -281,24 +315,12 @@ pmsh::label pmsh::countFoldedTriangles
     int levels
 )
 {
-    const std::size_t trianglesPerFace = std::size_t(1) << (2*levels);
     label nFolded = 0;
-    for (std::size_t facei = 0; facei < partSurface.faces.size(); ++facei)
-    {
-        const triVerts& f = partSurface.faces[facei];
-        const refinedTriangleFold folded
-        (
-            coarse.points[f[0]], coarse.points[f[1]], coarse.points[f[2]], 1 << levels
-        );
-        for (std::size_t t = 0; t < trianglesPerFace; ++t)
-        {
-            const triVerts& tri = fine.triangles[facei*trianglesPerFace + t];
-            if (folded(fine.points[tri[0]], fine.points[tri[1]], fine.points[tri[2]]))
-            {
-                ++nFolded;
-            }
-        }
-    }
+    visitFoldedTriangles
+    (
+        coarse, partSurface, fine, levels,
+        [&](std::size_t, const point3&, const point3&, const point3&) { ++nFolded; }
+    );
     return nFolded;
 }
 
@@ -326,29 +348,19 @@ pmsh::FineSurface pmsh::refinePartSurface
     if (nFolded > 0)
     {
         // Where: the first folded triangle and its patch
-        const std::size_t trianglesPerFace = std::size_t(1) << (2*levels);
         std::string where;
-        for (std::size_t facei = 0; facei < partSurface.faces.size() && where.empty(); ++facei)
-        {
-            const triVerts& f = partSurface.faces[facei];
-            const refinedTriangleFold folded
-            (
-                coarse.points[f[0]], coarse.points[f[1]], coarse.points[f[2]], 1 << levels
-            );
-            for (std::size_t t = 0; t < trianglesPerFace && where.empty(); ++t)
+        visitFoldedTriangles
+        (
+            coarse, partSurface, fine, levels,
+            [&](std::size_t facei, const point3& a, const point3& b, const point3& c)
             {
-                const triVerts& tri = fine.triangles[facei*trianglesPerFace + t];
-                const point3& a = fine.points[tri[0]];
-                const point3& b = fine.points[tri[1]];
-                const point3& c = fine.points[tri[2]];
-                if (folded(a, b, c))
+                if (where.empty())
                 {
-                    const label region = partSurface.region[facei];
                     where = "at " + str((1.0/3.0)*(a + b + c)) + " on "
-                      + regionDescription(region, coarse.patches);
+                      + regionDescription(partSurface.region[facei], coarse.patches);
                 }
             }
-        }
+        );
         throw FatalError
         (
             msg() << nFolded << " refined surface triangles of part " << part
