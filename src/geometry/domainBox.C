@@ -3,12 +3,84 @@
 \*---------------------------------------------------------------------------*/
 
 #include "domainBox.H"
+#include "domainCut.H"
 #include "surfaceBuilder.H"
 #include "pmshError.H"
 
 #include "messageStream.H"
 
 #include <algorithm>
+
+// * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
+
+namespace
+{
+
+//- s, bodies reaching the box, replaced by the box minus them; the log
+//  says which sides they reach and which solids lay wholly outside.
+void cutBodiesByBox(pmsh::stlSurface& s, const pmsh::domainBox& box, const std::string& what)
+{
+    using namespace pmsh;
+    domainCutReport report;
+    stlSurface cut = boxMinusBodies(s, box.min, box.max, box.sideNames, what, report);
+
+    // Solids wholly outside the box leave no triangle: no patch either
+    std::vector<bool> kept(cut.solidNames.size(), false);
+    for (label solid : cut.solid)
+    {
+        kept[solid] = true;
+    }
+    std::vector<label> renumber(cut.solidNames.size(), -1);
+    std::vector<std::string> names;
+    for (std::size_t solid = 0; solid < kept.size(); ++solid)
+    {
+        if (kept[solid])
+        {
+            renumber[solid] = label(names.size());
+            names.push_back(cut.solidNames[solid]);
+        }
+    }
+    for (label& solid : cut.solid)
+    {
+        solid = renumber[solid];
+    }
+    cut.solidNames = names;
+    std::string sides, dropped;
+    for (std::size_t side = 0; side < report.sideReached.size(); ++side)
+    {
+        if (report.sideReached[side])
+        {
+            sides += std::string(sides.empty() ? "" : ", ") + domainBox::sides[side];
+        }
+    }
+    std::vector<bool> before(s.solidNames.size(), false);
+    for (label solid : s.solid)
+    {
+        before[solid] = true;
+    }
+    for (std::size_t solid = 0; solid < s.solidNames.size(); ++solid)
+    {
+        if (before[solid] && !kept[solid])
+        {
+            dropped += (dropped.empty() ? "" : ", ") + s.solidNames[solid];
+        }
+    }
+    Foam::Info
+        << "    bodies cut by the domain box: they reach its side(s) " << sides.c_str()
+        << "; the fluid's surface is " << report.nTriangles << " triangles (CGAL"
+        << " corefinement, " << report.seconds << " s)\n";
+    if (!dropped.empty())
+    {
+        Foam::Info
+            << "        solids wholly outside the box, not in the mesh: "
+            << dropped.c_str() << "\n";
+    }
+    s = std::move(cut);
+    orientShellsOutOfTheFluid(s);
+}
+
+} // End anonymous namespace
+
 
 // * * * * * * * * * * * * * * * Global Functions  * * * * * * * * * * * * * //
 
@@ -18,29 +90,40 @@ void pmsh::putBodiesInDomain(stlSurface& s, const domainBox& box, const std::str
     const std::string boxText =
         "the domain box from " + str(box.min, 10) + " to " + str(box.max, 10);
 
-    // Every body strictly inside: one reaching a side would touch or cross it
-    for (label t = 0; t < s.nTriangles(); ++t)
+    // No body wholly outside: a shell without a point strictly inside
+    const auto strictlyInside = [&](const point3& p)
     {
-        for (label v : s.triangles[t])
+        bool inside = true;
+        for (int k = 0; k < 3; ++k)
         {
-            const point3& p = s.points[v];
-            bool inside = true;
-            for (int k = 0; k < 3; ++k)
+            inside = inside && box.min[k] < p[k] && p[k] < box.max[k];
+        }
+        return inside;
+    };
+    bool reachesBox = false;
+    for (const std::vector<label>& shell : nestShells(s).triangles)
+    {
+        bool someInside = false;
+        for (label t : shell)
+        {
+            for (label v : s.triangles[t])
             {
-                inside = inside && box.min[k] < p[k] && p[k] < box.max[k];
+                const bool inside = strictlyInside(s.points[v]);
+                someInside = someInside || inside;
+                reachesBox = reachesBox || !inside;
             }
-            if (!inside)
-            {
-                throw FatalError
-                (
-                    msg() << "Solid " << s.solidNames[s.solid[t]] << " of " << what
-                        << " reaches " << str(p, 10) << ", on or outside " << boxText
-                        << ".\nWith a domain every surface is a body in the flow,"
-                        << " inside the box and apart from it: enlarge the box (min,"
-                        << " max of 'domain' in system/pmshDict) or move the body",
-                    function
-                );
-            }
+        }
+        if (!someInside)
+        {
+            const point3& p = s.points[s.triangles[shell.front()][0]];
+            throw FatalError
+            (
+                msg() << "Solid " << s.solidNames[s.solid[shell.front()]] << " of " << what
+                    << " lies outside " << boxText << ", at " << str(p, 10) << " for"
+                    << " one.\nWith a domain every surface is a body in the flow: enlarge"
+                    << " the box (min, max of 'domain' in system/pmshDict) or move the body",
+                function
+            );
         }
     }
 
@@ -60,6 +143,12 @@ void pmsh::putBodiesInDomain(stlSurface& s, const domainBox& box, const std::str
                 function
             );
         }
+    }
+
+    if (reachesBox)
+    {
+        cutBodiesByBox(s, box, what);
+        return;
     }
 
     // Two outward triangles a side

@@ -289,11 +289,12 @@ class cases:
             f.write("# a CAD export that lost its faces\nv 0 0 0\nv 1 0 0\nv 0 1 0\n")
         return c, ["body.obj", "is empty: it contains no triangles"]
 
-    def bodyReachingTheDomainBox(self):
-        # The tutorial's sphere has radius 1
-        c = self.case("sphereSTL", domain="{ type box; min (-0.5 -5 -5); max (5 5 5); }")
-        return c, ["Solid sphere of STL file", "sphere.stl", "on or outside the domain box from"
-                   " (-0.5 -5 -5) to (5 5 5)", "enlarge the box"]
+    def bodyOutsideTheDomainBox(self):
+        # The tutorial's sphere has radius 1: a body through a side is cut
+        # by it, one wholly outside is a mistake
+        c = self.case("sphereSTL", domain="{ type box; min (2 -5 -5); max (5 5 5); }")
+        return c, ["Solid sphere of STL file", "sphere.stl", "lies outside the domain box from"
+                   " (2 -5 -5) to (5 5 5)", "enlarge the box"]
 
     def domainWithAZeroSide(self):
         c = self.case("sphereSTL", domain="{ type box; min (-5 -5 -5); max (5 -5 5); }")
@@ -459,8 +460,8 @@ class badInput(BadInputTest, cases):
     def test_objWithoutTriangles(self):
         self.expect_fatal(*self.objWithoutTriangles())
 
-    def test_bodyReachingTheDomainBox(self):
-        self.expect_fatal(*self.bodyReachingTheDomainBox())
+    def test_bodyOutsideTheDomainBox(self):
+        self.expect_fatal(*self.bodyOutsideTheDomainBox())
 
     def test_domainWithAZeroSide(self):
         self.expect_fatal(*self.domainWithAZeroSide())
@@ -669,8 +670,8 @@ class badInputParallel(BadInputTest, cases):
     def test_objWithoutTriangles(self):
         self.expect_fatal(*self.objWithoutTriangles(), np=2)
 
-    def test_bodyReachingTheDomainBox(self):
-        self.expect_fatal(*self.bodyReachingTheDomainBox(), np=2)
+    def test_bodyOutsideTheDomainBox(self):
+        self.expect_fatal(*self.bodyOutsideTheDomainBox(), np=2)
 
     def test_truncatedBinaryStl(self):
         self.expect_fatal(*self.truncatedBinaryStl(), np=2)

@@ -223,6 +223,41 @@ class bodyInBox(CaseTest):
         with open(boundary) as f:
             self.assertRegex(f.read(), r"(?s)\bcube\s*\{\s*type\s+wall;")
 
+    def body_through_the_floor(self, np):
+        """The sphere (radius 0.5) through the domain box's floor at its
+        equator, as a car's tyres stand in the road: the box is cut by it
+        and the log says so; Mesh OK with the patches, the fluid the box
+        less the upper half of the sphere, no point below the floor"""
+        c, solids = self.split_case()
+        write_obj(os.path.join(c.dir, "constant", "geometry", "body.obj.gz"),
+                  solids[3][1], flip=True)
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/body.obj.gz"')
+        c.set_entry("system/pmshDict", "domain",
+                    "{ type box; min (-5 -5 0); max (5 5 5);"
+                    " patches { xMin inlet; xMax outlet; default sides; } }")
+        self.mesh_case(c, np)
+        with open(os.path.join(c.dir, "log.pmshFoam")) as f:
+            self.assertIn("bodies cut by the domain box: they reach its side(s) zMin;", f.read())
+        # The sphere's facets are symmetric about z = 0 (an icosphere)
+        facets = [[tuple(float(x) for x in v) for v in re.findall(
+            r"vertex\s+(\S+)\s+(\S+)\s+(\S+)", f)]
+            for f in re.findall(r"outer loop\s+(.*?)endloop", solids[3][1], re.S)]
+        sphere = abs(sum(a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0])
+                         + a[2] * (b[0] * d[1] - b[1] * d[0]) for a, b, d in facets)) / 6
+        text = c.check_mesh(np=np)
+        volume = float(re.search(r"Total volume = ([0-9.eE+-]+?)\.?\s", text).group(1))
+        # The whole sphere left in or taken out is 0.13 away
+        self.assertAlmostEqual(volume, 500 - sphere / 2, delta=0.02)
+        for rank in (["processor%d" % r for r in range(np)] if np > 1 else [""]):
+            points = c.polymesh(os.path.join(rank, "constant", "polyMesh")).points()
+            self.assertGreaterEqual(min(p[2] for p in points), 0, rank)
+
+    def test_aBodyThroughTheBoxsFloorIsCutByItSerial(self):
+        self.body_through_the_floor(1)
+
+    def test_aBodyThroughTheBoxsFloorIsCutByItNp2(self):
+        self.body_through_the_floor(2)
+
     def dirty_body(self, boxes, np):
         """A body of unit-ish boxes (lo, hi, solid, open sides 0..5 =
         xMin..zMax) in one STL, as a CAD export may have it (open, parts

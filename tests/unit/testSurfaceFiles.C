@@ -12,6 +12,7 @@
 #include <zlib.h>
 
 #include <array>
+#include <cmath>
 #include <map>
 #include <sstream>
 
@@ -258,6 +259,20 @@ double volumeOfSolid(const stlSurface& s, const std::string& name)
     return v6/6;
 }
 
+
+double areaOfSolid(const stlSurface& s, const std::string& name)
+{
+    double area = 0;
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        if (s.solidNames[s.solid[t]] == name)
+        {
+            area += 0.5*std::sqrt(magSqr(s.areaNormal(t)));
+        }
+    }
+    return area;
+}
+
 } // End anonymous namespace
 
 
@@ -284,17 +299,58 @@ TEST(domainBox, aBodyOfEitherOrientationEndsPointingOutOfTheFluid)
 }
 
 
-TEST(domainBox, aBodyReachingTheBoxOrAPatchOfASideStopsNamingThem)
+TEST(domainBox, aBodyThroughTheBoxIsCutOutOfItAndKeepsItsPatchesInside)
+{
+    // The unit cube through the corner of a box from 0.5 to 2: the fluid is
+    // the box less the cube's eighth inside it
+    const tempDir dir("domainBox");
+    stlSurface s = readSurfaceFile(dir.file("cube.obj", cubeObj(0, 6)));
+    putBodiesInDomain(s, boxAround(0.5, 2), "OBJ file \"cube.obj\"");
+    EXPECT_NO_THROW(checkStl(s, "cube.obj"));
+    EXPECT_NEAR(enclosedVolume(s), 1.5*1.5*1.5 - 0.5*0.5*0.5, 1e-12);
+    // The cube's sides at 0 lie outside the box: no patch; those at 1 are
+    // cut to their quarter inside it, facing into the cube
+    EXPECT_EQ(s.solidNames, (std::vector<std::string>{"zMax", "yMax", "xMax", "inlet",
+                                                      "outlet", "sides"}));
+    EXPECT_NEAR(areaOfSolid(s, "zMax"), 0.25, 1e-12);
+    EXPECT_NEAR(volumeOfSolid(s, "zMax"), -0.25/3, 1e-12) << "into the cube";
+    EXPECT_NEAR(areaOfSolid(s, "inlet"), 1.5*1.5 - 0.25, 1e-12) << "the cube's footprint cut out";
+    EXPECT_NEAR(areaOfSolid(s, "outlet"), 1.5*1.5, 1e-12);
+    for (label t = 0; t < s.nTriangles(); ++t)
+    {
+        for (label v : s.triangles[t])
+        {
+            for (int k = 0; k < 3; ++k)
+            {
+                ASSERT_GE(s.points[v][k], 0.5) << "a point outside the box";
+            }
+        }
+    }
+}
+
+
+TEST(domainBox, aBodyTouchingTheBoxAtAPointOrWhollyOutsideOrAPatchOfASideStopsNamingThem)
 {
     const tempDir dir("domainBox");
+    // An octahedron standing on its tip on the box's floor: the fluid
+    // would end in a wedge of zero angle there
+    stlSurface tip;
+    tip.points = {{0, 0, 0}, {1, 0, 1}, {0, 1, 1}, {-1, 0, 1}, {0, -1, 1}, {0, 0, 2}};
+    tip.triangles = {{0, 2, 1}, {0, 3, 2}, {0, 4, 3}, {0, 1, 4},
+                     {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 1}};
+    tip.solid.assign(8, 0);
+    tip.solidNames = {"tip"};
+    domainBox floor = boxAround(-3, 3);
+    floor.min[2] = 0;
+    EXPECT_FATAL(putBodiesInDomain(tip, floor, "the octahedron"),
+                 "The bodies of the octahedron touch the domain box from (-3 -3 0) to"
+                 " (3 3 3) along a line or at a point (0 0 0)");
+
     const stlSurface body = readSurfaceFile(dir.file("cube.obj", cubeObj(0, 6)));
     stlSurface s = body;
-    EXPECT_FATAL(putBodiesInDomain(s, boxAround(0.5, 2), "OBJ file \"cube.obj\""),
-                 "Solid zMin of OBJ file \"cube.obj\" reaches (0 0 0), on or outside the"
-                 " domain box from (0.5 0.5 0.5) to (2 2 2)");
-    s = body;
-    EXPECT_FATAL(putBodiesInDomain(s, boxAround(0, 2), "OBJ file \"cube.obj\""),
-                 "reaches (0 0 0), on or outside");
+    EXPECT_FATAL(putBodiesInDomain(s, boxAround(2, 3), "OBJ file \"cube.obj\""),
+                 "Solid zMin of OBJ file \"cube.obj\" lies outside the domain box from"
+                 " (2 2 2) to (3 3 3), at (0 0 0)");
     domainBox named = boxAround(-1, 2);
     named.sideNames[0] = "xMax";
     s = body;
