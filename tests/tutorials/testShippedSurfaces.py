@@ -21,10 +21,12 @@ from foamCase import SHIPPED_GEOMETRY as SHIPPED, CaseTest, cells_in_checkmesh_l
 
 class shippedSurfaces(CaseTest):
 
-    def mesh_in_a_box(self, surface, wrapped, remeshed=None, entries=()):
+    def mesh_in_a_box(self, surface, wrapped, remeshed=None, entries=(), standing_on=None):
         """Mesh OK on 2 ranks, the box's patch and at least one wall; the
         log says the body was wrapped exactly when it had to be, and its
-        coarse surface remeshed (by default: exactly when wrapped)"""
+        coarse surface remeshed (by default: exactly when wrapped); standing
+        on a side ("yMin", ...): that side at the body's extreme point, and
+        the log says the box was cut by it; returns the log"""
         source = os.path.join(SHIPPED, surface)
         self.assertTrue(os.path.isfile(source), "openfoam-examples is not installed: " + source)
         lo, hi = extent(source)
@@ -33,9 +35,15 @@ class shippedSurfaces(CaseTest):
         shutil.rmtree(os.path.join(c.dir, "0"))
         shutil.copy(source, os.path.join(c.dir, "constant", "geometry", surface))
         c.set_entry("system/pmshDict", "geometry", '"constant/geometry/%s"' % surface)
+        low = [x - d for x in lo]
+        high = [x + d for x in hi]
+        if standing_on:
+            axis = "xyz".index(standing_on[0])
+            (low if standing_on.endswith("Min") else high)[axis] = \
+                (lo if standing_on.endswith("Min") else hi)[axis]
         c.set_entry("system/pmshDict", "domain",
                     "{ type box; min (%s); max (%s); patches { default farfield; } }"
-                    % (" ".join("%r" % (x - d) for x in lo), " ".join("%r" % (x + d) for x in hi)))
+                    % (" ".join("%r" % x for x in low), " ".join("%r" % x for x in high)))
         c.substitute("system/pmshDict", r"(?ms)^patches\s*\{.*?^\}",
                      "patches\n{\n    farfield { type patch; }\n"
                      "    \".*\" { type wall; maxCellSize %r; }\n}" % (d/20))
@@ -55,6 +63,9 @@ class shippedSurfaces(CaseTest):
             boundary = f.read()
         self.assertRegex(boundary, r"(?s)\bfarfield\s*\{\s*type\s+patch;")
         self.assertRegex(boundary, r"(?s)\{\s*type\s+wall;")
+        self.assertEqual("bodies cut by the domain box: they reach its side(s) %s;"
+                         % standing_on in log, standing_on is not None)
+        return log
 
     def test_bulletNp2(self):
         self.mesh_in_a_box("bullet.stl.gz", wrapped=False)
@@ -67,6 +78,12 @@ class shippedSurfaces(CaseTest):
 
     def test_buildingNp2(self):
         self.mesh_in_a_box("building_wtc2.obj.gz", wrapped=False)
+
+    def test_bulletStandingOnASideOfTheBoxNp2(self):
+        """The bullet's flat base (1477 points at its highest z) in the
+        box's zMax side, as a building stands on the ground: the side is
+        cut by the base's outline"""
+        self.mesh_in_a_box("bullet.stl.gz", wrapped=False, standing_on="zMax")
 
     def test_wigleysHalfHullIsWrappedNp2(self):
         self.mesh_in_a_box("wigley-scaled-oriented.stl.gz", wrapped=True)
