@@ -44,13 +44,17 @@ Point cgal(const pmsh::point3& p)
 }
 
 
-//- Squares a side's shortest edge is split into: the cut fans a side's
-//  triangles out from their corners to the bodies' footprints, and a
-//  triangle's size is taken at its centroid (localTriangleSizes), so a
-//  fan across a whole side would carry the footprint's size across it.
-//  On OpenFOAM's motorBike, with the floor two triangles, the remeshed
-//  coarse surface took 624 s and 92,884 triangles.
-constexpr int squaresAcrossSide = 8;
+//- Squares a side's shortest edge is split into (the longest edge into no
+//  more than longestSquares): the cut fans a side's triangles out from
+//  their corners to the bodies' footprints, and the remesher sizes and
+//  halves each input triangle whole, so a triangle across a large part of
+//  a side carries the footprint's size over it. OpenFOAM's motorBike on
+//  its floor (r = 1): with two triangles a side the coarse surface took
+//  624 s; with 8 squares across the floor 612k cells, 1,444 faces above
+//  70 degrees along the squares' edges round the tyres; with 32 squares
+//  360k cells (as with the floor below the tyres) and 170, at the tyres.
+constexpr int squaresAcrossSide = 32;
+constexpr int longestSquares = 256;
 
 
 //- The box's sides, outward, as grids of squares of two triangles.
@@ -58,8 +62,11 @@ Mesh boxMesh(const pmsh::point3& min, const pmsh::point3& max)
 {
     using namespace pmsh;
     const vector3 extent = max - min;
-    const double spacing =
-        std::min({extent[0], extent[1], extent[2]})/squaresAcrossSide;
+    const double spacing = std::max
+    (
+        std::min({extent[0], extent[1], extent[2]})/squaresAcrossSide,
+        std::max({extent[0], extent[1], extent[2]})/longestSquares
+    );
     std::array<int, 3> n;
     for (int k = 0; k < 3; ++k)
     {

@@ -27,8 +27,7 @@ pmsh::CoarseMesh pmsh::stlGeometry::remeshedSurface
     {
         Info<< "    gap sizing: not on a remeshed coarse surface\n";
     }
-    const std::vector<double> size =
-        gradeTriangleSizes(s, localTriangleSizes(parameters), parameters.grading);
+    const std::vector<double> size = localTriangleSizes(parameters);
 
     // curvatureRefinement cells a radian: chords sag by at most
     // 1/(8 curvatureRefinement) of their length

@@ -10,7 +10,6 @@
 
 #include "surfaceRemesh.H"
 #include "boxTree.H"
-#include "matchByPoints.H"
 #include "triangleGeometry.H"
 #include "pmshError.H"
 
@@ -25,7 +24,6 @@
 #include <iterator>
 #include <map>
 #include <numeric>
-#include <queue>
 
 namespace pmsh
 {
@@ -318,78 +316,6 @@ std::vector<std::pair<label, label>> crossingPairs
 
 } // End anonymous namespace
 } // End namespace pmsh
-
-
-std::vector<double> pmsh::gradeTriangleSizes
-(
-    const stlSurface& s,
-    const std::vector<double>& size,
-    const double grading
-)
-{
-    const label nt = s.nTriangles();
-    std::vector<std::vector<label>> neighbours(nt);
-    auto edgeOf = [&](matchId id) { return triangleEdge(s.triangles, id); };
-    forEachSamePointsGroup
-    (
-        s.points.size(), matchId(3*nt), edgeOf,
-        [&](const matchId* ids, std::size_t n)
-        {
-            for (std::size_t i = 0; i < n; ++i)
-            {
-                for (std::size_t j = 0; j < n; ++j)
-                {
-                    if (i != j)
-                    {
-                        neighbours[ids[i]/3].push_back(label(ids[j]/3));
-                    }
-                }
-            }
-        }
-    );
-
-    // Dijkstra from every triangle at once, the finest first; each graded
-    // size remembers the size it grew from
-    std::vector<double> graded(size);
-    std::vector<double> source(size);
-    using entry = std::pair<double, label>;
-    std::priority_queue<entry, std::vector<entry>, std::greater<entry>> queue;
-    for (label t = 0; t < nt; ++t)
-    {
-        queue.push({graded[t], t});
-    }
-    while (!queue.empty())
-    {
-        const auto [h, t] = queue.top();
-        queue.pop();
-        if (h > graded[t])
-        {
-            continue;
-        }
-        const point3 c = s.centroid(t);
-        for (const label n : neighbours[t])
-        {
-            const double reach = h + grading*std::sqrt(magSqr(s.centroid(n) - c));
-            if (reach < graded[n])
-            {
-                graded[n] = reach;
-                source[n] = source[t];
-                queue.push({reach, n});
-            }
-        }
-    }
-
-    for (label t = 0; t < nt; ++t)
-    {
-        if (graded[t] < size[t])
-        {
-            const double steps =
-                std::floor(std::log(graded[t]/source[t])/std::log(gradedSizeStep) + 1e-9);
-            graded[t] = std::min(size[t], source[t]*std::pow(gradedSizeStep, steps));
-        }
-    }
-    return graded;
-}
 
 
 pmsh::remeshedTriangulation pmsh::remeshSurface

@@ -1,6 +1,6 @@
 // The coarse surface remeshed from the triangles (coarseSurface remesh):
 // closed, every point on its face's surface, each patch at its own size,
-// the box's corners kept; sizes graded away from finer ones; and a thin plate, whose two sides cross when
+// the box's corners kept; and a thin plate, whose two sides cross when
 // remeshed coarser than its thickness, comes out without crossings.
 
 #include "Geometry.H"
@@ -151,54 +151,4 @@ TEST(surfaceRemesh, aThinShellIsRefinedWhereItsSidesWouldCross)
     // Away from the crossings the size stays: far fewer triangles than
     // the input's
     EXPECT_LT(r.triangles.size(), s.triangles.size()/4);
-}
-
-
-TEST(surfaceRemesh, sizesGradeAwayFromAFineTriangleInStepsOfTheirSource)
-{
-    // A strip of 40 unit squares along x, two triangles each, at size 1 but
-    // the first square's at 0.1: the rest grow from 0.1 by at most grading
-    // per unit of distance, in steps of gradedSizeStep, never above 1
-    stlSurface s;
-    const int n = 40;
-    for (int i = 0; i <= n; ++i)
-    {
-        s.points.push_back({double(i), 0, 0});
-        s.points.push_back({double(i), 1, 0});
-    }
-    for (int i = 0; i < n; ++i)
-    {
-        s.triangles.push_back({2*i, 2*i + 2, 2*i + 3});
-        s.triangles.push_back({2*i, 2*i + 3, 2*i + 1});
-    }
-    s.solid.assign(s.triangles.size(), 0);
-    s.solidNames = {"strip"};
-    std::vector<double> size(s.triangles.size(), 1.0);
-    size[0] = size[1] = 0.1;
-    const double grading = 0.3;
-
-    const std::vector<double> graded = gradeTriangleSizes(s, size, grading);
-
-    EXPECT_EQ(graded[0], 0.1);
-    EXPECT_EQ(graded[1], 0.1);
-    EXPECT_EQ(graded.back(), 1.0) << "far away the size is its own";
-    label nGraded = 0;
-    for (label t = 2; t < s.nTriangles(); ++t)
-    {
-        const double distance = std::sqrt(magSqr(s.centroid(t) - s.centroid(0)));
-        // Grading walks from centroid to centroid across edges: on this
-        // strip a zigzag up to 1.5 times the straight distance
-        EXPECT_LE(graded[t], 0.1 + 1.5*grading*distance) << "triangle " << t;
-        EXPECT_LE(graded[t], 1.0);
-        if (graded[t] < 1.0)
-        {
-            ++nGraded;
-            const double steps = std::log(graded[t]/0.1)/std::log(gradedSizeStep);
-            EXPECT_NEAR(steps, std::round(steps), 1e-9) << "triangle " << t;
-        }
-        EXPECT_GE(graded[t], graded[t - 2]) << "sizes grow away from the fine square";
-    }
-    // 0.1 + 0.3 d reaches 1 at d = 3: beyond the first few squares
-    EXPECT_GT(nGraded, 2);
-    EXPECT_LT(nGraded, 12);
 }
