@@ -172,19 +172,26 @@ class bodyInBox(CaseTest):
         os.remove(path)
         return c, solids
 
+    def cad_body_in_domain(self, box_min, flip):
+        """split_case with the sphere as a CAD body (body.obj.gz, flipped
+        or not) in a domain box from box_min to (5 5 5); returns (case,
+        solids)"""
+        c, solids = self.split_case()
+        write_obj(os.path.join(c.dir, "constant", "geometry", "body.obj.gz"),
+                  solids[3][1], flip=flip)
+        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/body.obj.gz"')
+        c.set_entry("system/pmshDict", "domain",
+                    "{ type box; min %s; max (5 5 5);"
+                    " patches { xMin inlet; xMax outlet; default sides; } }" % box_min)
+        return c, solids
+
     def test_aCadBodyOfEitherOrientationInTheDictionarysDomainBoxNp2(self):
         """geometry "body.obj.gz" and domain { type box; ... }: the body as
         CAD exports it (normals out of the body, into the fluid), no box
         surface; the mesh of sphereInBox.stl, within 10 % of its cells"""
         one, reference = self.mesh("sphereInBox.stl", 2)
         for flip in (True, False):
-            c, solids = self.split_case()
-            write_obj(os.path.join(c.dir, "constant", "geometry", "body.obj.gz"),
-                      solids[3][1], flip=flip)
-            c.set_entry("system/pmshDict", "geometry", '"constant/geometry/body.obj.gz"')
-            c.set_entry("system/pmshDict", "domain",
-                        "{ type box; min (-5 -5 -5); max (5 5 5);"
-                        " patches { xMin inlet; xMax outlet; default sides; } }")
+            c, _ = self.cad_body_in_domain("(-5 -5 -5)", flip)
             _, summary = self.mesh_case(c, 2)
             ratio = summary["fineCells"] / reference["fineCells"]
             self.assertGreater(ratio, 0.9, "flip %s" % flip)
@@ -228,13 +235,7 @@ class bodyInBox(CaseTest):
         equator, as a car's tyres stand in the road: the box is cut by it
         and the log says so; Mesh OK with the patches, the fluid the box
         less the upper half of the sphere, no point below the floor"""
-        c, solids = self.split_case()
-        write_obj(os.path.join(c.dir, "constant", "geometry", "body.obj.gz"),
-                  solids[3][1], flip=True)
-        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/body.obj.gz"')
-        c.set_entry("system/pmshDict", "domain",
-                    "{ type box; min (-5 -5 0); max (5 5 5);"
-                    " patches { xMin inlet; xMax outlet; default sides; } }")
+        c, solids = self.cad_body_in_domain("(-5 -5 0)", flip=True)
         self.mesh_case(c, np)
         with open(os.path.join(c.dir, "log.pmshFoam")) as f:
             self.assertIn("bodies cut by the domain box: they reach its side(s) zMin;", f.read())
