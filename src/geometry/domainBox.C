@@ -5,6 +5,7 @@
 #include "domainBox.H"
 #include "domainCut.H"
 #include "surfaceBuilder.H"
+#include "surfaceTopology.H"
 #include "pmshError.H"
 
 #include "messageStream.H"
@@ -100,25 +101,35 @@ void pmsh::putBodiesInDomain(stlSurface& s, const domainBox& box, const std::str
         }
         return inside;
     };
+    // Per shell (connected triangles): a point strictly inside, and the
+    // first triangle, for the message
+    label nShells = 0;
+    const std::vector<label> shell = surfaceShells(label(s.points.size()), s.triangles, nShells);
+    std::vector<bool> someInside(nShells, false);
+    std::vector<label> firstTriangle(nShells, -1);
     bool reachesBox = false;
-    for (const std::vector<label>& shell : nestShells(s).triangles)
+    for (label t = 0; t < s.nTriangles(); ++t)
     {
-        bool someInside = false;
-        for (label t : shell)
+        if (firstTriangle[shell[t]] < 0)
         {
-            for (label v : s.triangles[t])
-            {
-                const bool inside = strictlyInside(s.points[v]);
-                someInside = someInside || inside;
-                reachesBox = reachesBox || !inside;
-            }
+            firstTriangle[shell[t]] = t;
         }
-        if (!someInside)
+        for (label v : s.triangles[t])
         {
-            const point3& p = s.points[s.triangles[shell.front()][0]];
+            const bool inside = strictlyInside(s.points[v]);
+            someInside[shell[t]] = someInside[shell[t]] || inside;
+            reachesBox = reachesBox || !inside;
+        }
+    }
+    for (label sh = 0; sh < nShells; ++sh)
+    {
+        if (!someInside[sh])
+        {
+            const label t = firstTriangle[sh];
+            const point3& p = s.points[s.triangles[t][0]];
             throw FatalError
             (
-                msg() << "Solid " << s.solidNames[s.solid[shell.front()]] << " of " << what
+                msg() << "Solid " << s.solidNames[s.solid[t]] << " of " << what
                     << " lies outside " << boxText << ", at " << str(p, 10) << " for"
                     << " one.\nWith a domain every surface is a body in the flow: enlarge"
                     << " the box (min, max of 'domain' in system/pmshDict) or move the body",
