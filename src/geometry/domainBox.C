@@ -11,15 +11,23 @@
 #include "messageStream.H"
 
 #include <algorithm>
+#include <array>
 
 // * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
 
 namespace
 {
 
-//- s, bodies reaching the box, replaced by the box minus them; the log
-//  says which sides they reach and which solids lay wholly outside.
-void cutBodiesByBox(pmsh::stlSurface& s, const pmsh::domainBox& box, const std::string& what)
+//- s, bodies reaching the box's sides (sideReached, per side), replaced
+//  by the box minus them; the log says which sides they reach and which
+//  solids lay wholly outside.
+void cutBodiesByBox
+(
+    pmsh::stlSurface& s,
+    const pmsh::domainBox& box,
+    const std::array<bool, 6>& sideReached,
+    const std::string& what
+)
 {
     using namespace pmsh;
     domainCutReport report;
@@ -47,9 +55,9 @@ void cutBodiesByBox(pmsh::stlSurface& s, const pmsh::domainBox& box, const std::
     }
     cut.solidNames = names;
     std::string sides, dropped;
-    for (std::size_t side = 0; side < report.sideReached.size(); ++side)
+    for (std::size_t side = 0; side < sideReached.size(); ++side)
     {
-        if (report.sideReached[side])
+        if (sideReached[side])
         {
             sides += std::string(sides.empty() ? "" : ", ") + domainBox::sides[side];
         }
@@ -91,13 +99,19 @@ void pmsh::putBodiesInDomain(stlSurface& s, const domainBox& box, const std::str
     const std::string boxText =
         "the domain box from " + str(box.min, 10) + " to " + str(box.max, 10);
 
-    // No body wholly outside: a shell without a point strictly inside
+    // No body wholly outside: a shell without a point strictly inside.
+    // The sides a point lies on or beyond (xMin, xMax, ... as sides)
+    std::array<bool, 6> sideReached{};
     const auto strictlyInside = [&](const point3& p)
     {
         bool inside = true;
-        for (int k = 0; k < 3; ++k)
+        for (int side = 0; side < 6; ++side)
         {
-            inside = inside && box.min[k] < p[k] && p[k] < box.max[k];
+            const int axis = side/2;
+            const bool reached =
+                side % 2 ? p[axis] >= box.max[axis] : p[axis] <= box.min[axis];
+            sideReached[side] = sideReached[side] || reached;
+            inside = inside && !reached;
         }
         return inside;
     };
@@ -107,7 +121,6 @@ void pmsh::putBodiesInDomain(stlSurface& s, const domainBox& box, const std::str
     const std::vector<label> shell = surfaceShells(label(s.points.size()), s.triangles, nShells);
     std::vector<bool> someInside(nShells, false);
     std::vector<label> firstTriangle(nShells, -1);
-    bool reachesBox = false;
     for (label t = 0; t < s.nTriangles(); ++t)
     {
         if (firstTriangle[shell[t]] < 0)
@@ -118,7 +131,6 @@ void pmsh::putBodiesInDomain(stlSurface& s, const domainBox& box, const std::str
         {
             const bool inside = strictlyInside(s.points[v]);
             someInside[shell[t]] = someInside[shell[t]] || inside;
-            reachesBox = reachesBox || !inside;
         }
     }
     for (label sh = 0; sh < nShells; ++sh)
@@ -156,9 +168,9 @@ void pmsh::putBodiesInDomain(stlSurface& s, const domainBox& box, const std::str
         }
     }
 
-    if (reachesBox)
+    if (std::find(sideReached.begin(), sideReached.end(), true) != sideReached.end())
     {
-        cutBodiesByBox(s, box, what);
+        cutBodiesByBox(s, box, sideReached, what);
         return;
     }
 

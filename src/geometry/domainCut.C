@@ -295,19 +295,14 @@ pmsh::stlSurface pmsh::boxMinusBodies
 
     stlSurface s;
     s.solidNames = bodies.solidNames;
-    // Sides of one name are one solid (patch)
+    // Sides of one name are one solid (patch); none is a body's
+    // (putBodiesInDomain)
     std::array<label, 6> sideSolid{};
-    for (std::size_t side = 0; side < sideSolid.size(); ++side)
     {
-        const auto same = std::find
-        (
-            s.solidNames.begin() + bodies.solidNames.size(), s.solidNames.end(),
-            sideNames[side]
-        );
-        sideSolid[side] = label(same - s.solidNames.begin());
-        if (same == s.solidNames.end())
+        surfaceBuilder builder(s, "");
+        for (std::size_t side = 0; side < sideSolid.size(); ++side)
         {
-            s.solidNames.push_back(sideNames[side]);
+            sideSolid[side] = builder.addSolid(sideNames[side]);
         }
     }
 
@@ -345,17 +340,6 @@ pmsh::stlSurface pmsh::boxMinusBodies
             solid = bodies.solid[std::size_t(nearest.second - input.begin())];
         }
         s.solid.push_back(solid);
-    }
-
-    // A side reached by a body: one a body's point lies on or beyond
-    for (const point3& p : bodies.points)
-    {
-        for (int side = 0; side < 6; ++side)
-        {
-            const int axis = side/2;
-            report.sideReached[side] = report.sideReached[side]
-             || (side % 2 ? p[axis] >= max[axis] : p[axis] <= min[axis]);
-        }
     }
 
     report.nTriangles = s.nTriangles();
