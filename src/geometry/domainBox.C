@@ -34,26 +34,7 @@ void cutBodiesByBox
     stlSurface cut = boxMinusBodies(s, box.min, box.max, box.sideNames, what, report);
 
     // Solids wholly outside the box leave no triangle: no patch either
-    std::vector<bool> kept(cut.solidNames.size(), false);
-    for (label solid : cut.solid)
-    {
-        kept[solid] = true;
-    }
-    std::vector<label> renumber(cut.solidNames.size(), -1);
-    std::vector<std::string> names;
-    for (std::size_t solid = 0; solid < kept.size(); ++solid)
-    {
-        if (kept[solid])
-        {
-            renumber[solid] = label(names.size());
-            names.push_back(cut.solidNames[solid]);
-        }
-    }
-    for (label& solid : cut.solid)
-    {
-        solid = renumber[solid];
-    }
-    cut.solidNames = names;
+    removeSolidsWithoutTriangles(cut);
     std::string sides, dropped;
     for (std::size_t side = 0; side < sideReached.size(); ++side)
     {
@@ -69,9 +50,15 @@ void cutBodiesByBox
     }
     for (std::size_t solid = 0; solid < s.solidNames.size(); ++solid)
     {
-        if (before[solid] && !kept[solid])
+        const std::string& name = s.solidNames[solid];
+        if
+        (
+            before[solid]
+         && std::find(cut.solidNames.begin(), cut.solidNames.end(), name)
+         == cut.solidNames.end()
+        )
         {
-            dropped += (dropped.empty() ? "" : ", ") + s.solidNames[solid];
+            dropped += (dropped.empty() ? "" : ", ") + name;
         }
     }
     Foam::Info

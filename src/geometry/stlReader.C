@@ -442,6 +442,14 @@ pmsh::stlSurface pmsh::readStl(const std::string& fileName)
     }
 
     // Solids without triangles (e.g. an empty ascii solid) are not patches
+    removeSolidsWithoutTriangles(s);
+
+    return s;
+}
+
+
+void pmsh::removeSolidsWithoutTriangles(stlSurface& s)
+{
     std::vector<label> used(s.solidNames.size(), 0);
     for (label so : s.solid)
     {
@@ -465,8 +473,6 @@ pmsh::stlSurface pmsh::readStl(const std::string& fileName)
         }
         s.solidNames = names;
     }
-
-    return s;
 }
 
 
