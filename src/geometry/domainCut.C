@@ -3,16 +3,12 @@
 \*---------------------------------------------------------------------------*/
 
 #include "domainCut.H"
+#include "cgalSurface.H"
 #include "pmshError.H"
 #include "surfaceBuilder.H"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 
 #include <algorithm>
@@ -27,21 +23,9 @@
 namespace
 {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Triangle = Kernel::Triangle_3;
-using Mesh = CGAL::Surface_mesh<Point>;
-using TrianglePrimitive =
-    CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>;
-using TriangleTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, TrianglePrimitive>>;
-
+using Mesh = pmsh::cgal::Mesh;
+using pmsh::cgal::toCgal;
 namespace PMP = CGAL::Polygon_mesh_processing;
-
-
-Point cgal(const pmsh::point3& p)
-{
-    return Point(p[0], p[1], p[2]);
-}
 
 
 //- Squares a side's shortest edge is split into (the longest edge into no
@@ -90,7 +74,7 @@ Mesh boxMesh(const pmsh::point3& min, const pmsh::point3& max)
                  : ijk[k] == n[k] ? max[k]
                  : min[k] + extent[k]*ijk[k]/n[k];
         }
-        const Mesh::Vertex_index v = m.add_vertex(Point(x[0], x[1], x[2]));
+        const Mesh::Vertex_index v = m.add_vertex(toCgal(x));
         vertex.emplace(ijk, v);
         return v;
     };
@@ -134,7 +118,7 @@ Mesh bodyMesh(const pmsh::stlSurface& s, const std::string& what)
     v.reserve(s.points.size());
     for (const pmsh::point3& p : s.points)
     {
-        v.push_back(m.add_vertex(cgal(p)));
+        v.push_back(m.add_vertex(toCgal(p)));
     }
     bool manifold = true;
     for (const pmsh::triVerts& t : s.triangles)
@@ -211,8 +195,7 @@ const pmsh::point3* pointsOf
     for (const Mesh::Vertex_index v : m.vertices())
     {
         index[std::size_t(v)] = label(points.size());
-        const Point& p = m.point(v);
-        points.push_back({p.x(), p.y(), p.z()});
+        points.push_back(pmsh::cgal::toPoint3(m.point(v)));
         if (!seen.emplace(pointKey(points.back()), index[std::size_t(v)]).second)
         {
             return &points.back();
@@ -283,15 +266,7 @@ pmsh::stlSurface pmsh::boxMinusBodies
 
     // Each body triangle's solid, found from the nearest input triangle:
     // the cut's triangles inside a body triangle lie on it
-    std::vector<Triangle> input;
-    input.reserve(bodies.triangles.size());
-    for (const triVerts& t : bodies.triangles)
-    {
-        input.emplace_back(cgal(bodies.points[t[0]]), cgal(bodies.points[t[1]]),
-                           cgal(bodies.points[t[2]]));
-    }
-    TriangleTree inputTree(input.begin(), input.end());
-    inputTree.accelerate_distance_queries();
+    const cgal::triangleTree inputTree(bodies);
 
     stlSurface s;
     s.solidNames = bodies.solidNames;
@@ -335,9 +310,7 @@ pmsh::stlSurface pmsh::boxMinusBodies
         s.triangles.push_back(t);
         if (solid < 0)
         {
-            const point3 c = s.centroid(label(s.triangles.size()) - 1);
-            const auto nearest = inputTree.closest_point_and_primitive(cgal(c));
-            solid = bodies.solid[std::size_t(nearest.second - input.begin())];
+            solid = bodies.solid[inputTree.nearest(s.centroid(s.nTriangles() - 1))];
         }
         s.solid.push_back(solid);
     }

@@ -2,21 +2,14 @@
   pmshFoam: the coarse surface remeshed by CGAL (see surfaceRemesh.H).
 \*---------------------------------------------------------------------------*/
 
-// CGAL's own assertions are for CGAL's debugging: OpenFOAM's wmake builds
-// without NDEBUG, and with them the motorBike's wrap took 20 s, not 16.
-// Results are checked here instead (no crossings; the volume meshers
-// check closure).
-#define CGAL_NDEBUG
-
 #include "surfaceRemesh.H"
+#include "cgalSurface.H"
 #include "boxTree.H"
 #include "triangleGeometry.H"
 #include "pmshError.H"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
-#include <CGAL/Surface_mesh.h>
 
 #include <algorithm>
 #include <chrono>
@@ -30,9 +23,10 @@ namespace pmsh
 namespace
 {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point>;
+using cgal::Mesh;
+using cgal::Point;
+using cgal::toCgal;
+using cgal::toPoint3;
 using Face = Mesh::Face_index;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
@@ -101,12 +95,6 @@ constexpr double flatTriangle = 1e-6;
 //  refines each into caps, on which the volume meshers put tets of faces
 //  at up to 89.7 degrees from orthogonal.
 constexpr double capCos = -0.9396926;   // cos(160 degrees)
-
-
-point3 toPoint3(const Point& x)
-{
-    return {x.x(), x.y(), x.z()};
-}
 
 
 //- Whether flipping edge (a, b) of triangles (a, b, c) and (b, a, d)
@@ -204,7 +192,7 @@ remeshedShell remeshShell
             if (!vertex.count(p))
             {
                 const point3& x = s.points[p];
-                vertex[p] = m.add_vertex(Point(x[0], x[1], x[2]));
+                vertex[p] = m.add_vertex(toCgal(x));
             }
         }
     }
@@ -267,8 +255,7 @@ remeshedShell remeshShell
     remeshedShell r;
     for (const auto v : m.vertices())
     {
-        const Point& x = m.point(v);
-        r.points.push_back(toPoint3(x));
+        r.points.push_back(toPoint3(m.point(v)));
     }
     for (const Face f : m.faces())
     {
@@ -297,7 +284,7 @@ std::vector<std::pair<label, label>> crossingPairs
     Mesh m;
     for (const point3& x : points)
     {
-        m.add_vertex(Point(x[0], x[1], x[2]));
+        m.add_vertex(toCgal(x));
     }
     for (const triVerts& t : triangles)
     {

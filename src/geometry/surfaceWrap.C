@@ -1,16 +1,7 @@
-// CGAL's own assertions are for CGAL's debugging: OpenFOAM's wmake builds
-// without NDEBUG, and with them the motorBike's wrap took 20 s, not 16.
-// The wrap is checked here instead (checkStl).
-#define CGAL_NDEBUG
-
 #include "surfaceWrap.H"
+#include "cgalSurface.H"
 #include "matchByPoints.H"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
 #include <CGAL/alpha_wrap_3.h>
 
 #include <algorithm>
@@ -22,22 +13,6 @@
 
 namespace
 {
-
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_3;
-using Triangle = Kernel::Triangle_3;
-using Mesh = CGAL::Surface_mesh<Point>;
-
-// The input's triangles in a tree: the nearest one to a wrap triangle
-// gives it its solid
-using TrianglePrimitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<Triangle>::const_iterator>;
-using TriangleTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, TrianglePrimitive>>;
-
-Point cgal(const pmsh::point3& p)
-{
-    return Point(p[0], p[1], p[2]);
-}
-
 
 //- The CAD's feature edges (two triangles of one solid meeting at more than
 //  surfaceFeatureAngle, or of two solids), sampled every `spacing`,
@@ -194,11 +169,11 @@ pmsh::stlSurface pmsh::wrapSurface
 {
     const auto start = std::chrono::steady_clock::now();
 
-    std::vector<Point> points;
+    std::vector<cgal::Point> points;
     points.reserve(s.points.size());
     for (const point3& p : s.points)
     {
-        points.push_back(cgal(p));
+        points.push_back(cgal::toCgal(p));
     }
     // alpha_wrap_3 takes a soup: repeated, crossing or open faces are all
     // fine, but a face is a range of point indices
@@ -209,44 +184,29 @@ pmsh::stlSurface pmsh::wrapSurface
         faces.push_back({std::size_t(t[0]), std::size_t(t[1]), std::size_t(t[2])});
     }
 
-    Mesh wrap;
+    cgal::Mesh wrap;
     CGAL::alpha_wrap_3(points, faces, size, offset, wrap);
 
-    std::vector<Triangle> input;
-    input.reserve(s.triangles.size());
-    for (const triVerts& t : s.triangles)
-    {
-        input.emplace_back(points[t[0]], points[t[1]], points[t[2]]);
-    }
-    TriangleTree inputTree(input.begin(), input.end());
-    inputTree.accelerate_distance_queries();
+    const cgal::triangleTree inputTree(s);
 
     stlSurface out;
     out.solidNames = s.solidNames;
     std::vector<label> index(wrap.number_of_vertices(), -1);
-    for (const Mesh::Vertex_index v : wrap.vertices())
+    for (const cgal::Mesh::Vertex_index v : wrap.vertices())
     {
         index[std::size_t(v)] = label(out.points.size());
-        const Point& p = wrap.point(v);
-        out.points.push_back({p.x(), p.y(), p.z()});
+        out.points.push_back(cgal::toPoint3(wrap.point(v)));
     }
-    for (const Mesh::Face_index f : wrap.faces())
+    for (const cgal::Mesh::Face_index f : wrap.faces())
     {
         triVerts t{};
         int k = 0;
-        for (const Mesh::Vertex_index v : CGAL::vertices_around_face(wrap.halfedge(f), wrap))
+        for (const cgal::Mesh::Vertex_index v : CGAL::vertices_around_face(wrap.halfedge(f), wrap))
         {
             t[k++] = index[std::size_t(v)];
         }
         out.triangles.push_back(t);
-        const Point centre = CGAL::centroid
-        (
-            wrap.point(CGAL::source(wrap.halfedge(f), wrap)),
-            wrap.point(CGAL::target(wrap.halfedge(f), wrap)),
-            wrap.point(CGAL::target(wrap.next(wrap.halfedge(f)), wrap))
-        );
-        const auto nearest = inputTree.closest_point_and_primitive(centre);
-        out.solid.push_back(s.solid[std::size_t(nearest.second - input.begin())]);
+        out.solid.push_back(s.solid[inputTree.nearest(out.centroid(out.nTriangles() - 1))]);
     }
 
     report.nTidied = tidyWrapPatches(out, smallestPatchIsland);
@@ -257,28 +217,21 @@ pmsh::stlSurface pmsh::wrapSurface
     double maxDistance2 = 0;
     for (const point3& p : out.points)
     {
-        maxDistance2 = std::max(maxDistance2, inputTree.squared_distance(cgal(p)));
+        maxDistance2 = std::max(maxDistance2, inputTree.squaredDistance(p));
     }
     for (label t = 0; t < out.nTriangles(); ++t)
     {
-        maxDistance2 = std::max(maxDistance2, inputTree.squared_distance(cgal(out.centroid(t))));
+        maxDistance2 = std::max(maxDistance2, inputTree.squaredDistance(out.centroid(t)));
     }
 
     // How far the wrap lies from the CAD's feature edges: a convex edge is
     // rounded at about the offset, a concave one bridged further
-    std::vector<Triangle> wrapTriangles;
-    wrapTriangles.reserve(out.triangles.size());
-    for (const triVerts& t : out.triangles)
-    {
-        wrapTriangles.emplace_back(cgal(out.points[t[0]]), cgal(out.points[t[1]]), cgal(out.points[t[2]]));
-    }
-    TriangleTree wrapTree(wrapTriangles.begin(), wrapTriangles.end());
-    wrapTree.accelerate_distance_queries();
+    const cgal::triangleTree wrapTree(out);
     double featureDistance2 = -1;
     label nSamples = 0, nWithinSize = 0;
     for (const point3& p : featureEdgeSamples(s, 0.25*size, report.nFeatureEdges))
     {
-        const double d2 = wrapTree.squared_distance(cgal(p));
+        const double d2 = wrapTree.squaredDistance(p);
         ++nSamples;
         nWithinSize += (d2 <= size*size);
         if (d2 > featureDistance2)
