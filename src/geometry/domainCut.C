@@ -176,27 +176,20 @@ std::size_t collapseShortEdges(Mesh& m, const double tolerance)
     return nCollapsed;
 }
 
-//- The points of m, and per vertex index its point's: nullptr, or the
-//  first point m gives twice. CGAL keeps the result of a cut manifold
+//- The points of m (nothing removed: in vertex index order): nullptr, or
+//  the first point m gives twice. CGAL keeps the result of a cut manifold
 //  where a body touches a side along a line or at a point by giving the
 //  touching points twice.
-const pmsh::point3* pointsOf
-(
-    const Mesh& m,
-    std::vector<pmsh::label>& index,
-    std::vector<pmsh::point3>& points
-)
+const pmsh::point3* pointsOf(const Mesh& m, std::vector<pmsh::point3>& points)
 {
     using namespace pmsh;
-    index.assign(m.number_of_vertices(), -1);
     points.clear();
     points.reserve(m.number_of_vertices());
     std::unordered_map<pointKey, label, pointKeyHash> seen;
     for (const Mesh::Vertex_index v : m.vertices())
     {
-        index[std::size_t(v)] = label(points.size());
-        points.push_back(pmsh::cgal::toPoint3(m.point(v)));
-        if (!seen.emplace(pointKey(points.back()), index[std::size_t(v)]).second)
+        points.push_back(cgal::toPoint3(m.point(v)));
+        if (!seen.emplace(pointKey(points.back()), label(points.size()) - 1).second)
         {
             return &points.back();
         }
@@ -244,11 +237,10 @@ pmsh::stlSurface pmsh::boxMinusBodies
         );
     }
     const double tolerance = 1e-9*std::sqrt(magSqr(max - min));
-    collapseShortEdges(out, tolerance);
+    collapseShortEdges(out, tolerance);     // and collects the garbage
 
-    std::vector<label> index;
     std::vector<point3> points;
-    const point3* touching = pointsOf(out, index, points);
+    const point3* touching = pointsOf(out, points);
     if (!manifold || touching)
     {
         throw FatalError
@@ -286,12 +278,7 @@ pmsh::stlSurface pmsh::boxMinusBodies
     // predicates decide, the constructions round)
     for (const Mesh::Face_index f : out.faces())
     {
-        triVerts t{};
-        int k = 0;
-        for (const Mesh::Vertex_index v : CGAL::vertices_around_face(out.halfedge(f), out))
-        {
-            t[k++] = index[std::size_t(v)];
-        }
+        const triVerts t = cgal::triangleOf(out, f);
         label solid = -1;
         for (int side = 0; side < 6 && solid < 0; ++side)
         {

@@ -24,7 +24,6 @@ namespace
 {
 
 using cgal::Mesh;
-using cgal::Point;
 using cgal::toCgal;
 using cgal::toPoint3;
 using Face = Mesh::Face_index;
@@ -259,13 +258,7 @@ remeshedShell remeshShell
     }
     for (const Face f : m.faces())
     {
-        triVerts t;
-        int k = 0;
-        for (const auto v : CGAL::vertices_around_face(m.halfedge(f), m))
-        {
-            t[k++] = label(v);
-        }
-        r.triangles.push_back(t);
+        r.triangles.push_back(cgal::triangleOf(m, f));
         r.region.push_back(patchRegion[patch[f]]);
         r.size.push_back(patchSize[patch[f]]);
     }

@@ -186,26 +186,19 @@ pmsh::stlSurface pmsh::wrapSurface
 
     cgal::Mesh wrap;
     CGAL::alpha_wrap_3(points, faces, size, offset, wrap);
+    wrap.collect_garbage();     // nothing removed: vertex indices number points
 
     const cgal::triangleTree inputTree(s);
 
     stlSurface out;
     out.solidNames = s.solidNames;
-    std::vector<label> index(wrap.number_of_vertices(), -1);
     for (const cgal::Mesh::Vertex_index v : wrap.vertices())
     {
-        index[std::size_t(v)] = label(out.points.size());
         out.points.push_back(cgal::toPoint3(wrap.point(v)));
     }
     for (const cgal::Mesh::Face_index f : wrap.faces())
     {
-        triVerts t{};
-        int k = 0;
-        for (const cgal::Mesh::Vertex_index v : CGAL::vertices_around_face(wrap.halfedge(f), wrap))
-        {
-            t[k++] = index[std::size_t(v)];
-        }
-        out.triangles.push_back(t);
+        out.triangles.push_back(cgal::triangleOf(wrap, f));
         out.solid.push_back(s.solid[inputTree.nearest(out.centroid(out.nTriangles() - 1))]);
     }
 
