@@ -301,8 +301,11 @@ class SphereStudy(Study):
 
 PIPE_RADIUS = 0.5
 PIPE_NU = 0.01
-# Hagen-Poiseuille between x = 8 and 18: 32 nu U L / D^2 (kinematic)
-PIPE_REFERENCE_DP = 32*PIPE_NU*1.0*10.0/(2*PIPE_RADIUS)**2
+PIPE_LENGTH = 14.0
+# The tutorial's cross-sections (its planes x7, x12), in the developed flow
+PIPE_PLANES = (7, 12)
+# Hagen-Poiseuille between them: 32 nu U L / D^2 (kinematic)
+PIPE_REFERENCE_DP = 32*PIPE_NU*1.0*(PIPE_PLANES[1] - PIPE_PLANES[0])/(2*PIPE_RADIUS)**2
 
 
 class PipeStudy(Study):
@@ -343,16 +346,16 @@ class PipeStudy(Study):
                             "entries": {"wallLevel": level, "nLayers": layers}})
         return out
 
-    functions = ""                  # the tutorial's own planes x8, x18
+    functions = ""                  # the tutorial's own planes x7, x12
 
     def interior(self, c):
-        return 1 < c[0] < 19 and math.hypot(c[1], c[2]) < PIPE_RADIUS - 0.1
+        return 1 < c[0] < PIPE_LENGTH - 1 and math.hypot(c[1], c[2]) < PIPE_RADIUS - 0.1
 
     def answer(self, case):
-        """(iterations, {dp, wallShear}): the pressure drop between x = 8 and
-        18, and the mean axial wall shear stress there (against 8 nu U/D)"""
+        """(iterations, {dp, wallShear}): the pressure drop between the
+        planes, and the mean axial wall shear stress there (against 8 nu U/D)"""
         rows = []
-        for plane in ("x8", "x18"):
+        for plane in ("x%d" % x for x in PIPE_PLANES):
             row = last_row(os.path.join(case, "postProcessing", plane, "0",
                                         "surfaceFieldValue.dat"))
             rows.append([float(x) for x in row.split()])
@@ -542,7 +545,7 @@ def patch_values(path, patch):
 
 
 def mean_wall_shear(case):
-    """Mean axial wall shear stress on the pipe's walls between x = 8 and 18
+    """Mean axial wall shear stress on the pipe's walls between its planes
     (Hagen-Poiseuille: 8 nu U / D)"""
     force, area = 0.0, 0.0
     for d in mesh_dirs(case):
@@ -556,7 +559,7 @@ def mean_wall_shear(case):
         stress = patch_values(os.path.join(latest, "wallShearStress"), "walls")
         for face, tau in zip(mesh.faces()[start:start + n], stress):
             x = sum(xs[i][0] for i in face)/len(face)
-            if 8 < x < 18:
+            if PIPE_PLANES[0] < x < PIPE_PLANES[1]:
                 a = triangle_fan_area(xs, face)
                 force -= tau[0]*a
                 area += a
@@ -823,7 +826,8 @@ def make_plots(results, out):
         pb.log("No matplotlib: no plots")
         return
     labels = {"sphere": ("Cd of the sphere, Re = 100", "reference 1.087 (Johnson & Patel)"),
-              "pipe": ("pressure drop x = 8..18 / Hagen-Poiseuille's", "Hagen-Poiseuille")}
+              "pipe": ("pressure drop x = %d..%d / Hagen-Poiseuille's" % PIPE_PLANES,
+                       "Hagen-Poiseuille")}
     fig, axes = plt.subplots(len(STUDIES), len(SCHEMES), figsize=(15, 9), sharey="row")
     for row, study in enumerate(STUDIES):
         res = results[study.name]
@@ -969,9 +973,9 @@ def write_report(results, out):
              "",
              "- **sphere** (tutorials/sphereDrag): Re = 100, D = 1 in a 20 x 10 x 10 box with"
              " symmetry sides; Cd against 1.087 (Johnson & Patel 1999);",
-             "- **pipe** (tutorials/pipe): Re = 100, D = 1, 20 D long, uniform inflow;"
-             " the pressure drop between x = 8 and 18 against Hagen-Poiseuille's"
-             " 32 nu U L / D^2 = %.2f." % PIPE_REFERENCE_DP,
+             "- **pipe** (tutorials/pipe): Re = 100, D = 1, %g D long, uniform inflow;"
+             " the pressure drop between x = %d and %d against Hagen-Poiseuille's"
+             " 32 nu U L / D^2 = %.2f." % ((PIPE_LENGTH,) + PIPE_PLANES + (PIPE_REFERENCE_DP,)),
              ""]
     lines += results.get("findings", [])
     lines += ["", "![Cd and pressure drop against cells](drag-study-cd.png)", "",
