@@ -1,6 +1,7 @@
 #include "wallLayers.H"
 #include "triangleCrossings.H"
 #include "layerStars.H"
+#include "triangleGeometry.H"
 
 #include <algorithm>
 #include <cmath>
@@ -40,14 +41,6 @@ constexpr double minLiftedAreaShare = 0.25;
 //  in its optimiser, and 2,113 faces above 70 degrees; with this rule (and
 //  smoothed directions) 2,300 tets after 9 s, and 22 faces.
 constexpr double minTopQualityShare = 0.5;
-
-
-//- Shape quality of triangle (a, b, c): 1 equilateral, 0 degenerate.
-double triangleQuality(const point3& a, const point3& b, const point3& c)
-{
-    const double l2 = magSqr(b - a) + magSqr(c - b) + magSqr(a - c);
-    return l2 > 0 ? 2*std::sqrt(3.0)*std::sqrt(magSqr(cross(b - a, c - a)))/l2 : 0;
-}
 
 
 //- Per layered triangle, per point: the current state of the rounds.
@@ -109,8 +102,8 @@ struct layerState
             if (!validPrism(prism)) return false;
         }
         const auto& x = points();
-        const double wall = triangleQuality(x[f[0]], x[f[1]], x[f[2]]);
-        const double top = triangleQuality
+        const double wall = triangleShapeQuality(x[f[0]], x[f[1]], x[f[2]]);
+        const double top = triangleShapeQuality
         (
             layers.topPoint(x, f[0]), layers.topPoint(x, f[1]), layers.topPoint(x, f[2])
         );
