@@ -111,8 +111,8 @@ class layers(CaseTest):
         """tutorials/pipe as shipped (12 layers on the wall, 2 ranks): Mesh
         OK, at least 99 % layer coverage in the log, and the Allrun's
         pressure drop between x = 7 and 12 within 2 % of Hagen-Poiseuille's
-        1.6 (+1.5 %; tetrahedra alone gave +10.5 % with the same schemes
-        on the earlier 20 D pipe)."""
+        1.6 (+1.5 %; tetrahedra alone give +9.2 % with the same
+        schemes)."""
         c = self.case("pipe")
         code, out = c.run_allrun()
         self.assertEqual(code, 0, out[-3000:])
