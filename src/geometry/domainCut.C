@@ -15,7 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 // * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
@@ -185,11 +185,11 @@ const pmsh::point3* pointsOf(const Mesh& m, std::vector<pmsh::point3>& points)
     using namespace pmsh;
     points.clear();
     points.reserve(m.number_of_vertices());
-    std::unordered_map<pointKey, label, pointKeyHash> seen;
+    std::unordered_set<pointKey, pointKeyHash> seen;
     for (const Mesh::Vertex_index v : m.vertices())
     {
         points.push_back(cgal::toPoint3(m.point(v)));
-        if (!seen.emplace(pointKey(points.back()), label(points.size()) - 1).second)
+        if (!seen.insert(pointKey(points.back())).second)
         {
             return &points.back();
         }
