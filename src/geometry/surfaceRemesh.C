@@ -95,6 +95,9 @@ constexpr double flatTriangle = 1e-6;
 //  at up to 89.7 degrees from orthogonal.
 constexpr double capCos = -0.9396926;   // cos(160 degrees)
 
+//- Sweeps of flipDegenerateTriangles at most
+constexpr int maxFlipSweeps = 10;
+
 
 //- Whether flipping edge (a, b) of triangles (a, b, c) and (b, a, d)
 //  makes the worse of the two better, with neither new triangle, (a, d, c)
@@ -112,55 +115,76 @@ bool flipImproves(const point3& a, const point3& b, const point3& c, const point
 
 
 //- Flip the longest edge of every flat triangle, and of every cap where
-//  that makes the pair better, where both its triangles lie in one patch
-//  and the edge is no feature. Isotropic remeshing can leave a triangle
+//  that makes the pair better, where both its triangles lie in one region
+//  (of one size or two: the border of a refinement region on the floor
+//  is no edge of the geometry, and OpenFOAM's motorBike had caps of 177
+//  degrees along it, whose tets made potentialFoam's velocity 1e7) and
+//  the edge is no feature. Isotropic remeshing can leave a triangle
 //  whose third point is its longest edge's midpoint (the motorBike's wrap
 //  at 0.05, after a round of halving: two), and neither HXT nor Netgen
 //  fills a surface with one (HXT: a flat tet of aspect ratio 1e10, each
 //  attempt; Netgen: minutes in RemoveIllegalElements).
 template<class PatchMap, class EdgeMap>
-void flipDegenerateTriangles(Mesh& m, const PatchMap& patch, const EdgeMap& constrained)
+void flipDegenerateTriangles
+(
+    Mesh& m,
+    const PatchMap& patch,
+    const std::vector<label>& patchRegion,
+    const EdgeMap& constrained
+)
 {
-    for (const Face f : m.faces())
+    // A flip can leave a cap next door: sweep until none flips (a cap's
+    // flip makes its pair's worse triangle better, so this ends)
+    for (int sweep = 0; sweep < maxFlipSweeps; ++sweep)
     {
-        Mesh::Halfedge_index longest;
-        double longest2 = 0;
-        for (const auto h : CGAL::halfedges_around_face(m.halfedge(f), m))
+        label nFlipped = 0;
+        for (const Face f : m.faces())
         {
-            const double l2 = CGAL::to_double
-            (
-                CGAL::squared_distance(m.point(m.source(h)), m.point(m.target(h)))
-            );
-            if (l2 > longest2)
+            Mesh::Halfedge_index longest;
+            double longest2 = 0;
+            for (const auto h : CGAL::halfedges_around_face(m.halfedge(f), m))
             {
-                longest2 = l2;
-                longest = h;
+                const double l2 = CGAL::to_double
+                (
+                    CGAL::squared_distance(m.point(m.source(h)), m.point(m.target(h)))
+                );
+                if (l2 > longest2)
+                {
+                    longest2 = l2;
+                    longest = h;
+                }
+            }
+            const point3 a = toPoint3(m.point(m.source(longest)));
+            const point3 b = toPoint3(m.point(m.target(longest)));
+            const point3 c = toPoint3(m.point(m.target(m.next(longest))));
+            const double area = 0.5*std::sqrt(magSqr(cross(b - a, c - a)));
+            const bool flat = area < flatTriangle*longest2;
+            const bool cap =
+                dot(a - c, b - c) < capCos*std::sqrt(magSqr(a - c)*magSqr(b - c));
+            if (!flat && !cap)
+            {
+                continue;
+            }
+            const Face other = m.face(m.opposite(longest));
+            const auto apex = m.target(m.next(longest));
+            const auto otherApex = m.target(m.next(m.opposite(longest)));
+            if
+            (
+                other != Mesh::null_face()
+             && patchRegion[patch[other]] == patchRegion[patch[f]]
+             && !constrained[m.edge(longest)]
+                // the new edge must not exist already
+             && !CGAL::halfedge(apex, otherApex, m).second
+             && (flat || flipImproves(a, b, c, toPoint3(m.point(otherApex))))
+            )
+            {
+                CGAL::Euler::flip_edge(longest, m);
+                ++nFlipped;
             }
         }
-        const point3 a = toPoint3(m.point(m.source(longest)));
-        const point3 b = toPoint3(m.point(m.target(longest)));
-        const point3 c = toPoint3(m.point(m.target(m.next(longest))));
-        const double area = 0.5*std::sqrt(magSqr(cross(b - a, c - a)));
-        const bool flat = area < flatTriangle*longest2;
-        const bool cap =
-            dot(a - c, b - c) < capCos*std::sqrt(magSqr(a - c)*magSqr(b - c));
-        if (!flat && !cap)
+        if (nFlipped == 0)
         {
-            continue;
-        }
-        const Face other = m.face(m.opposite(longest));
-        const auto apex = m.target(m.next(longest));
-        const auto otherApex = m.target(m.next(m.opposite(longest)));
-        if
-        (
-            other != Mesh::null_face() && patch[other] == patch[f]
-         && !constrained[m.edge(longest)]
-            // the new edge must not exist already
-         && !CGAL::halfedge(apex, otherApex, m).second
-         && (flat || flipImproves(a, b, c, toPoint3(m.point(otherApex))))
-        )
-        {
-            CGAL::Euler::flip_edge(longest, m);
+            break;
         }
     }
 }
@@ -248,7 +272,7 @@ remeshedShell remeshShell
            .face_patch_map(patch)
         );
     }
-    flipDegenerateTriangles(m, patch, constrained);
+    flipDegenerateTriangles(m, patch, patchRegion, constrained);
     m.collect_garbage();
 
     remeshedShell r;

@@ -97,6 +97,70 @@ TEST(surfaceRemesh, aSphereInABoxIsRemeshedClosedOnItsSurfacesAtEachPatchsSize)
 }
 
 
+TEST(surfaceRemesh, theBorderOfARefinementRegionLeavesNoCapAbove170DegreesOnAFlatSide)
+{
+    // A refinement box through the sphereInBox's sides halves their size
+    // where it reaches them: a border of sizes within each side, no edge
+    // of the geometry, along which the remeshing leaves caps (OpenFOAM's
+    // motorBike: 177 degrees on its floor at the refinement box's border,
+    // whose tets made potentialFoam's velocity 1e7). Flips across it
+    // leave none above 170 degrees (179 without them): a cap whose flip
+    // would not make its pair better stays.
+    auto g = Geometry::New(dataDir + "sphereInBox.stl");
+    coarseMeshParameters p(2.0);
+    p.coarseSurface = "remesh";
+    sizeRegion wake;
+    wake.name = "wake";
+    wake.min = {-1.3, -1.1, -5.5};
+    wake.max = {5.5, 2.3, 1.9};
+    wake.size = 0.35;
+    p.regions.push_back(wake);
+    const CoarseMesh m = g->coarseSurface(p);
+    EXPECT_TRUE(closedAndConsistent(triangles(m)));
+
+    // Each triangle's largest angle, and whether its neighbour across its
+    // longest edge is of its own patch (a cap at a patch border stays)
+    std::map<std::pair<label, label>, label> faceOfEdge;
+    for (std::size_t f = 0; f < m.boundary.size(); ++f)
+    {
+        const triVerts& v = m.boundary[f].v;
+        for (int k = 0; k < 3; ++k)
+        {
+            faceOfEdge[{v[k], v[(k + 1) % 3]}] = label(f);
+        }
+    }
+    double largest = 0;
+    for (std::size_t f = 0; f < m.boundary.size(); ++f)
+    {
+        const triVerts& v = m.boundary[f].v;
+        for (int k = 0; k < 3; ++k)
+        {
+            const point3& c = m.points[v[k]];
+            const point3& a = m.points[v[(k + 1) % 3]];
+            const point3& b = m.points[v[(k + 2) % 3]];
+            const double angle = std::acos
+            (
+                dot(a - c, b - c)/std::sqrt(magSqr(a - c)*magSqr(b - c))
+            )*180/M_PI;
+            // Across a flat edge, in the same patch
+            const label across = faceOfEdge.at({v[(k + 2) % 3], v[(k + 1) % 3]});
+            const triVerts& w = m.boundary[across].v;
+            const vector3 n = cross(a - c, b - c);
+            const vector3 o = cross
+            (
+                m.points[w[1]] - m.points[w[0]], m.points[w[2]] - m.points[w[0]]
+            );
+            const bool flat = dot(n, o) > 0.999*std::sqrt(magSqr(n)*magSqr(o));
+            if (m.boundary[across].patch == m.boundary[f].patch && flat)
+            {
+                largest = std::max(largest, angle);
+            }
+        }
+    }
+    EXPECT_LT(largest, 170);
+}
+
+
 TEST(surfaceRemesh, aCsgGeometryHasNoTrianglesToRemesh)
 {
     auto g = Geometry::New(dataDir + "sphere.geo");
