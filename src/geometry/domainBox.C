@@ -31,7 +31,10 @@ void cutBodiesByBox
 {
     using namespace pmsh;
     domainCutReport report;
-    stlSurface cut = boxMinusBodies(s, box.min, box.max, box.sideNames, what, report);
+    stlSurface cut = boxMinusBodies
+    (
+        s, box.min, box.max, box.sideNames, box.plinthHeight, what, report
+    );
 
     // Solids wholly outside the box leave no triangle: no patch either
     removeSolidsWithoutTriangles(cut);
@@ -65,6 +68,20 @@ void cutBodiesByBox
         << "    bodies cut by the domain box: they reach its side(s) " << sides.c_str()
         << "; the fluid's surface is " << report.nTriangles << " triangles (CGAL"
         << " corefinement, " << report.seconds << " s)\n";
+    if (report.nPlinths > 0)
+    {
+        Foam::Info
+            << "        bodies standing on plinths: " << report.nPlinths << ", their parts"
+            << " within plinthHeight " << box.plinthHeight << " of the sides they reach"
+            << " replaced by their sections there, drawn out through the sides\n";
+    }
+    if (report.nNoPlinth > 0)
+    {
+        Foam::Info
+            << "        bodies left without a plinth: " << report.nNoPlinth << " (each lies"
+            << " within plinthHeight of a side, or its section there has a point on two"
+            << " of its loops)\n";
+    }
     if (!dropped.empty())
     {
         Foam::Info

@@ -7,6 +7,8 @@
 #include "pmshError.H"
 #include "surfaceBuilder.H"
 
+#include <CGAL/Polygon_mesh_processing/clip.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/boost/graph/Euler_operations.h>
@@ -139,6 +141,184 @@ Mesh bodyMesh(const pmsh::stlSurface& s, const std::string& what)
     return m;
 }
 
+//- Whether a point of m lies on or beyond the side at `wall` of axis.
+bool reachesSide(const Mesh& m, const int axis, const bool high, const double wall)
+{
+    for (const Mesh::Vertex_index v : m.vertices())
+    {
+        const double x = m.point(v)[axis];
+        if (high ? x >= wall : x <= wall)
+        {
+            return true;
+        }
+    }
+    return false;
+}
+
+
+//- body (closed, connected, reaching the side at `wall` of axis) with its
+//  part within `height` of the side replaced by its section at that
+//  height drawn out `height` beyond the side: a plinth, as wind tunnels
+//  and road-car CFD put under tyres. The fluid then meets the body at
+//  right angles on the side, not in the wedge a tyre makes with the road
+//  (7 degrees where a tyre of radius 0.3 dips 2 mm into it), in which
+//  no tetrahedron is good. False, body unchanged, where no section is
+//  left (the body lies within height of the side) or the section pinches
+//  (a point of it on two of its loops).
+bool plinthed(Mesh& body, const int axis, const bool high, const double wall, const double height)
+{
+    using Vector = pmsh::cgal::Kernel::Vector_3;
+    const double level = high ? wall - height : wall + height;
+    const double beyond = high ? wall + height : wall - height;
+    Vector towardsWall(axis == 0, axis == 1, axis == 2);
+    if (!high)
+    {
+        towardsWall = -towardsWall;
+    }
+    pmsh::cgal::Point onLevel(0, 0, 0);
+    {
+        std::array<double, 3> x{0, 0, 0};
+        x[axis] = level;
+        onLevel = pmsh::cgal::Point(x[0], x[1], x[2]);
+    }
+    // CGAL keeps the side away from the wall (the plane's negative side)
+    // and closes the volume with faces on the plane: the section
+    Mesh clipped = body;
+    if
+    (
+        !PMP::clip(clipped, pmsh::cgal::Kernel::Plane_3(onLevel, towardsWall),
+            CGAL::parameters::clip_volume(true))
+     || clipped.is_empty()
+    )
+    {
+        return false;
+    }
+    clipped.collect_garbage();
+
+    const double tolerance = 1e-9*std::max(1.0, std::abs(level));
+    const auto onSection = [&](const Mesh::Face_index f)
+    {
+        for (const Mesh::Vertex_index v : CGAL::vertices_around_face(clipped.halfedge(f), clipped))
+        {
+            if (std::abs(clipped.point(v)[axis] - level) > tolerance)
+            {
+                return false;
+            }
+        }
+        return PMP::compute_face_normal(f, clipped)*towardsWall > 0;
+    };
+    std::vector<bool> section(clipped.number_of_faces(), false);
+    bool any = false;
+    for (const Mesh::Face_index f : clipped.faces())
+    {
+        section[f] = onSection(f);
+        any = any || section[f];
+    }
+    if (!any)
+    {
+        return false;
+    }
+
+    // The body above the section, the section moved beyond the wall and
+    // a wall from each of its edges down to there
+    Mesh out;
+    const Mesh::Vertex_index none = Mesh::null_vertex();
+    std::vector<Mesh::Vertex_index> kept(clipped.number_of_vertices(), none);
+    std::vector<Mesh::Vertex_index> moved(clipped.number_of_vertices(), none);
+    const auto keptOf = [&](const Mesh::Vertex_index v)
+    {
+        if (kept[v] == none)
+        {
+            kept[v] = out.add_vertex(clipped.point(v));
+        }
+        return kept[v];
+    };
+    const auto movedOf = [&](const Mesh::Vertex_index v)
+    {
+        if (moved[v] == none)
+        {
+            const pmsh::cgal::Point& p = clipped.point(v);
+            std::array<double, 3> x{p.x(), p.y(), p.z()};
+            x[axis] = beyond;
+            moved[v] = out.add_vertex(pmsh::cgal::Point(x[0], x[1], x[2]));
+        }
+        return moved[v];
+    };
+    bool manifold = true;
+    const auto add = [&](Mesh::Vertex_index a, Mesh::Vertex_index b, Mesh::Vertex_index c)
+    {
+        manifold = manifold && out.add_face(a, b, c) != Mesh::null_face();
+    };
+    for (const Mesh::Face_index f : clipped.faces())
+    {
+        const Mesh::Halfedge_index h = clipped.halfedge(f);
+        std::array<Mesh::Vertex_index, 3> v
+        {
+            clipped.source(h), clipped.target(h), clipped.target(clipped.next(h))
+        };
+        if (!section[f])
+        {
+            add(keptOf(v[0]), keptOf(v[1]), keptOf(v[2]));
+            continue;
+        }
+        add(movedOf(v[0]), movedOf(v[1]), movedOf(v[2]));
+        for (const Mesh::Halfedge_index e : CGAL::halfedges_around_face(h, clipped))
+        {
+            if (!section[clipped.face(clipped.opposite(e))])
+            {
+                // The removed section face's edge u -> v, as it ran
+                const Mesh::Vertex_index u = clipped.source(e), w = clipped.target(e);
+                add(keptOf(u), keptOf(w), movedOf(w));
+                add(keptOf(u), movedOf(w), movedOf(u));
+            }
+        }
+    }
+    if (!manifold || !CGAL::is_closed(out))
+    {
+        return false;
+    }
+    body = std::move(out);
+    return true;
+}
+
+
+//- The bodies of solid that reach a side, each with a plinth there
+//  (plinthed) of the given height: the report counts the plinths made and
+//  the bodies left as they were.
+void addPlinths
+(
+    Mesh& solid,
+    const pmsh::point3& min,
+    const pmsh::point3& max,
+    const double height,
+    pmsh::domainCutReport& report
+)
+{
+    for (int side = 0; side < 6; ++side)
+    {
+        const int axis = side/2;
+        const bool high = side % 2;
+        const double wall = (high ? max : min)[axis];
+        if (!reachesSide(solid, axis, high, wall))
+        {
+            continue;
+        }
+        std::vector<Mesh> bodies;
+        PMP::split_connected_components(solid, bodies);
+        Mesh joined;
+        for (Mesh& body : bodies)
+        {
+            if (reachesSide(body, axis, high, wall))
+            {
+                ++(plinthed(body, axis, high, wall, height) ? report.nPlinths : report.nNoPlinth);
+            }
+            CGAL::copy_face_graph(body, joined);
+        }
+        solid = std::move(joined);
+    }
+}
+
+
 //- Edges of m shorter than `tolerance` collapsed, where that keeps m a
 //  2-manifold (the link condition). The cut's constructed points are
 //  rounded, so where an input point lies on a grid line of a side the cut
@@ -208,6 +388,7 @@ pmsh::stlSurface pmsh::boxMinusBodies
     const point3& min,
     const point3& max,
     const std::array<std::string, 6>& sideNames,
+    const double plinthHeight,
     const std::string& what,
     domainCutReport& report
 )
@@ -217,6 +398,10 @@ pmsh::stlSurface pmsh::boxMinusBodies
 
     Mesh fluid = boxMesh(min, max);
     Mesh solid = bodyMesh(bodies, what);
+    if (plinthHeight > 0)
+    {
+        addPlinths(solid, min, max, plinthHeight, report);
+    }
     Mesh out;
     bool manifold = false;
     try
@@ -251,7 +436,7 @@ pmsh::stlSurface pmsh::boxMinusBodies
                 << ": the fluid between them and the side would end in a wedge of"
                 << " zero angle.\nMove the box's side (min, max of 'domain' in"
                 << " system/pmshDict) so that the bodies cross it or stay apart"
-                << " from it",
+                << " from it, or stand them on plinths (plinthHeight in 'domain')",
             function
         );
     }

@@ -192,7 +192,7 @@ domainBox readDomain
 {
     const std::string owner = "'domain'";
     const std::vector<std::string> entries
-    {"type", "min", "max", "patches", "wrap", "wrapSize", "wrapOffset"};
+    {"type", "min", "max", "patches", "wrap", "wrapSize", "wrapOffset", "plinthHeight"};
     std::vector<std::string> sideKeys(domainBox::sides.begin(), domainBox::sides.end());
     sideKeys.push_back("default");
     const std::string example =
@@ -244,6 +244,12 @@ domainBox readDomain
         dd, "wrapOffset", box.wrapSize/2, aboveZero, std::numeric_limits<double>::max(), false,
         "wrapOffset of " + owner + " must be a number > 0: how far outside the"
         " body its wrap lies (default wrapSize/2)"
+    );
+    box.plinthHeight = check.bounded
+    (
+        dd, "plinthHeight", 0.0, 0.0, std::numeric_limits<double>::max(), false,
+        "plinthHeight of " + owner + " must be a number >= 0: bodies reaching a side"
+        " stand on their section this far from it (default 0: no plinths)"
     );
 
     if (const entry* p = foam::findEntry(dd, "patches"))

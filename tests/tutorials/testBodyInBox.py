@@ -10,6 +10,7 @@ Run one test:  python3 testBodyInBox.py bodyInBox.test_stlNp2
 """
 
 import gzip
+import math
 import os
 import re
 import shutil
@@ -258,6 +259,44 @@ class bodyInBox(CaseTest):
 
     def test_aBodyThroughTheBoxsFloorIsCutByItNp2(self):
         self.body_through_the_floor(2)
+
+    def test_aBodyRestingOnTheFloorStandsOnAPlinthNp2(self):
+        """The sphere resting on the box's floor at its lowest point: the
+        fluid would end there in a wedge of zero angle, and pmshFoam stops
+        saying so and naming plinthHeight. With plinthHeight 0.05 its part
+        within 0.05 of the floor is replaced by its section there drawn
+        down through the floor: Mesh OK, the log says so, the sphere's
+        patch meets the floor on a ring, no point below the floor"""
+        c, _ = self.cad_body_in_domain("(-5 -5 -0.5)", flip=True)
+        code, log = c.run("pmshFoam", np=2, check=False)
+        self.assertNotEqual(code, 0)
+        self.assertIn("touch the domain box", log)
+        self.assertIn("stand them on plinths (plinthHeight in 'domain')", log)
+        self.assertFalse(c.exists("processor0"))
+        c.substitute("system/pmshDict", r"max \(5 5 5\);", "max (5 5 5); plinthHeight 0.05;")
+        self.mesh_case(c, 2)
+        with open(os.path.join(c.dir, "log.pmshFoam")) as f:
+            self.assertIn("bodies standing on plinths: 1, their parts within"
+                          " plinthHeight 0.05", f.read())
+        # The footprint: the sphere's patch meets the floor on a ring of
+        # the section's radius at 0.05, sqrt(0.5^2 - 0.45^2) = 0.218, not
+        # at a point
+        ring = []
+        for rank in ("processor0", "processor1"):
+            mesh = c.polymesh(os.path.join(rank, "constant", "polyMesh"))
+            points, faces = mesh.points(), mesh.faces()
+            for name, entries in mesh.boundary():
+                if name == "body":
+                    start, n = int(entries["startFace"]), int(entries["nFaces"])
+                    ring += [points[v] for f in faces[start:start + n] for v in f
+                             if points[v][2] == -0.5]
+        self.assertGreaterEqual(len(ring), 16)
+        radii = [math.hypot(x, y) for x, y, _ in ring]
+        self.assertGreater(min(radii), 0.19)
+        self.assertLess(max(radii), 0.22)
+        for rank in ("processor0", "processor1"):
+            points = c.polymesh(os.path.join(rank, "constant", "polyMesh")).points()
+            self.assertGreaterEqual(min(p[2] for p in points), -0.5, rank)
 
     def dirty_body(self, boxes, np):
         """A body of unit-ish boxes (lo, hi, solid, open sides 0..5 =

@@ -597,6 +597,15 @@ TEST_F(meshSettingsTest, aDomainWrapsDirtyBodiesAtTheFinestCellSizeUnlessToldOth
     EXPECT_HAS(errorFor(minimal() + box + "wrapSize 0; }\n"), "wrapSize of 'domain' must be a number > 0");
 }
 
+TEST_F(meshSettingsTest, aDomainPutsBodiesOnPlinthsOnlyWhenAskedWithAHeightOfZeroOrMore)
+{
+    const std::string box = "domain { type box; min (-5 -4 0); max (15 4 8); ";
+    EXPECT_EQ(read(minimal() + box + "}\n").domain.plinthHeight, 0);
+    EXPECT_DOUBLE_EQ(read(minimal() + box + "plinthHeight 0.03; }\n").domain.plinthHeight, 0.03);
+    EXPECT_HAS(errorFor(minimal() + box + "plinthHeight -0.1; }\n"),
+               "plinthHeight of 'domain' must be a number >= 0");
+}
+
 TEST_F(meshSettingsTest, geometryMustBeAQuotedFileName)
 {
     for (const char* bad : {"constant/geometry/body.stl", "()", "(\"a.stl\" 1)", "1", "\"a.stl\" \"b.stl\""})

@@ -329,6 +329,47 @@ TEST(domainBox, aBodyThroughTheBoxIsCutOutOfItAndKeepsItsPatchesInside)
 }
 
 
+TEST(domainBox, aBodyOnAPlinthMeetsTheSideAtRightAnglesInsteadOfTouchingIt)
+{
+    // The octahedron of the next test, standing on its tip on the floor,
+    // on a plinth 0.1 high: its part below z = 0.1 (a pyramid) replaced
+    // by the section there (a square of area 2*0.1^2) drawn down through
+    // the floor
+    stlSurface tip;
+    tip.points = {{0, 0, 0}, {1, 0, 1}, {0, 1, 1}, {-1, 0, 1}, {0, -1, 1}, {0, 0, 2}};
+    tip.triangles = {{0, 2, 1}, {0, 3, 2}, {0, 4, 3}, {0, 1, 4},
+                     {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 1}};
+    tip.solid.assign(8, 0);
+    tip.solidNames = {"tip"};
+    domainBox floor = boxAround(-3, 3);
+    floor.min[2] = 0;
+    floor.plinthHeight = 0.1;
+    putBodiesInDomain(tip, floor, "the octahedron");
+    EXPECT_NO_THROW(checkStl(tip, "the octahedron"));
+
+    const double h = floor.plinthHeight;
+    const double body = 4.0/3 - 2.0/3*h*h*h + 2*h*h*h;
+    EXPECT_NEAR(enclosedVolume(tip), 6*6*3 - body, 1e-10);
+    // The plinth's walls (the tip's patch) stand upright on the floor
+    label nOnFloor = 0;
+    for (label t = 0; t < tip.nTriangles(); ++t)
+    {
+        const triVerts& f = tip.triangles[t];
+        const bool touches = tip.points[f[0]][2] == 0 || tip.points[f[1]][2] == 0
+                          || tip.points[f[2]][2] == 0;
+        if (tip.solidNames[tip.solid[t]] == "tip" && touches)
+        {
+            const vector3 n = tip.areaNormal(t);
+            EXPECT_NEAR(n[2], 0, 1e-12*std::sqrt(magSqr(n)));
+            ++nOnFloor;
+        }
+    }
+    EXPECT_GE(nOnFloor, 4);
+    EXPECT_NEAR(areaOfSolid(tip, "sides"), 2*6*3 + 2*6*6 - 2*h*h, 1e-12)
+        << "the plinth's footprint cut out of the floor";
+}
+
+
 TEST(domainBox, aBodyTouchingTheBoxAtAPointOrWhollyOutsideOrAPatchOfASideStopsNamingThem)
 {
     const tempDir dir("domainBox");
