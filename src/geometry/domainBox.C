@@ -75,6 +75,15 @@ void cutBodiesByBox
             << " within plinthHeight " << box.plinthHeight << " of the sides they reach"
             << " replaced by their sections there, drawn out through the sides\n";
     }
+    if (report.nPockets > 0)
+    {
+        const point3& at = report.pocketAt;
+        Foam::Info
+            << "        fluid closed off by the bodies and the sides, not meshed: "
+            << report.nPockets << " pocket(s) of volume " << report.pocketVolume
+            << " in all, the largest at (" << at[0] << ' ' << at[1] << ' ' << at[2]
+            << ") (a body's cavity open only beyond a side)\n";
+    }
     if (report.nNoPlinth > 0)
     {
         Foam::Info

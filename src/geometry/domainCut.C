@@ -319,6 +319,60 @@ void addPlinths
 }
 
 
+//- The fluid's pockets removed from m (the box less the bodies, oriented
+//  out of the fluid): closed parts of the fluid apart from the rest,
+//  which the cut makes where a body's cavity is open only beyond a side
+//  (OpenFOAM's motorBike on its floor: the inside of its rear wheel's
+//  wrap, 8,599 cells that no face joined to the rest, on which simpleFoam's
+//  pressure solver could not converge and the solution blew up). The rest
+//  is the shell of the largest volume; a shell of positive volume
+//  besides it bounds a pocket, a body wholly inside the box bounds a
+//  negative one. As snappyHexMesh keeps only the cells reachable from
+//  locationInMesh, the report counts the pockets, their volume and a
+//  point of the largest.
+void removeFluidPockets(Mesh& m, pmsh::domainCutReport& report)
+{
+    auto component = m.add_property_map<Mesh::Face_index, std::size_t>("f:pocket").first;
+    const std::size_t nComponents = PMP::connected_components(m, component);
+    std::vector<double> volume(nComponents, 0);
+    std::vector<pmsh::point3> somePoint(nComponents);
+    for (const Mesh::Face_index f : m.faces())
+    {
+        std::array<pmsh::point3, 3> x;
+        int k = 0;
+        for (const Mesh::Vertex_index v : CGAL::vertices_around_face(m.halfedge(f), m))
+        {
+            x[k++] = pmsh::cgal::toPoint3(m.point(v));
+        }
+        volume[component[f]] += pmsh::dot(x[0], pmsh::cross(x[1], x[2]))/6;
+        somePoint[component[f]] = x[0];
+    }
+    const std::size_t rest =
+        std::max_element(volume.begin(), volume.end()) - volume.begin();
+    std::vector<std::size_t> pockets;
+    double largest = 0;
+    for (std::size_t c = 0; c < nComponents; ++c)
+    {
+        if (c != rest && volume[c] > 0)
+        {
+            pockets.push_back(c);
+            report.pocketVolume += volume[c];
+            if (volume[c] > largest)
+            {
+                largest = volume[c];
+                report.pocketAt = somePoint[c];
+            }
+        }
+    }
+    if (!pockets.empty())
+    {
+        PMP::remove_connected_components(m, pockets, component);
+    }
+    report.nPockets = pockets.size();
+    m.remove_property_map(component);
+}
+
+
 //- Edges of m shorter than `tolerance` collapsed, where that keeps m a
 //  2-manifold (the link condition). The cut's constructed points are
 //  rounded, so where an input point lies on a grid line of a side the cut
@@ -421,6 +475,7 @@ pmsh::stlSurface pmsh::boxMinusBodies
             function
         );
     }
+    removeFluidPockets(out, report);
     const double tolerance = 1e-9*std::sqrt(magSqr(max - min));
     collapseShortEdges(out, tolerance);     // and collects the garbage
 

@@ -5,6 +5,7 @@
 #include "surfaceFiles.H"
 #include "stlGeometry.H"
 #include "domainBox.H"
+#include "surfaceTopology.H"
 #include "testUtilities.H"
 
 #include <gtest/gtest.h>
@@ -367,6 +368,73 @@ TEST(domainBox, aBodyOnAPlinthMeetsTheSideAtRightAnglesInsteadOfTouchingIt)
     EXPECT_GE(nOnFloor, 4);
     EXPECT_NEAR(areaOfSolid(tip, "sides"), 2*6*3 + 2*6*6 - 2*h*h, 1e-12)
         << "the plinth's footprint cut out of the floor";
+}
+
+
+TEST(domainBox, aCavityThatTheFloorClosesOffIsLeftOutOfTheFluid)
+{
+    // A cup upside down through the floor, as the inside of a wheel's
+    // wrap open only below the road: the box (2 wide, z -1..1) less a
+    // cavity (1 wide, z -1..0.5) open at its bottom. The floor at z = 0
+    // closes the cavity's upper part off from the rest of the fluid.
+    stlSurface cup;
+    for (int k = 0; k < 2; ++k)
+    {
+        for (int j = 0; j < 2; ++j)
+        {
+            for (int i = 0; i < 2; ++i)
+            {
+                cup.points.push_back({2.0*i - 1, 2.0*j - 1, 2.0*k - 1});
+            }
+        }
+    }
+    for (int k = 0; k < 2; ++k)
+    {
+        for (int j = 0; j < 2; ++j)
+        {
+            for (int i = 0; i < 2; ++i)
+            {
+                cup.points.push_back({i - 0.5, j - 0.5, k ? 0.5 : -1.0});
+            }
+        }
+    }
+    const auto o = [](int i, int j, int k) { return label(i + 2*j + 4*k); };
+    const auto c = [](int i, int j, int k) { return label(8 + i + 2*j + 4*k); };
+    // Each quad round its normal, out of the cup's material
+    const std::vector<std::array<label, 4>> quads
+    {
+        {o(0, 0, 1), o(1, 0, 1), o(1, 1, 1), o(0, 1, 1)},
+        {o(0, 0, 0), o(0, 0, 1), o(0, 1, 1), o(0, 1, 0)},
+        {o(1, 0, 0), o(1, 1, 0), o(1, 1, 1), o(1, 0, 1)},
+        {o(0, 0, 0), o(1, 0, 0), o(1, 0, 1), o(0, 0, 1)},
+        {o(0, 1, 0), o(0, 1, 1), o(1, 1, 1), o(1, 1, 0)},
+        {o(0, 0, 0), c(0, 0, 0), c(1, 0, 0), o(1, 0, 0)},      // the rim
+        {o(1, 0, 0), c(1, 0, 0), c(1, 1, 0), o(1, 1, 0)},
+        {o(1, 1, 0), c(1, 1, 0), c(0, 1, 0), o(0, 1, 0)},
+        {o(0, 1, 0), c(0, 1, 0), c(0, 0, 0), o(0, 0, 0)},
+        {c(0, 0, 0), c(0, 1, 0), c(0, 1, 1), c(0, 0, 1)},      // the cavity
+        {c(1, 0, 0), c(1, 0, 1), c(1, 1, 1), c(1, 1, 0)},
+        {c(0, 0, 0), c(0, 0, 1), c(1, 0, 1), c(1, 0, 0)},
+        {c(0, 1, 0), c(1, 1, 0), c(1, 1, 1), c(0, 1, 1)},
+        {c(0, 0, 1), c(0, 1, 1), c(1, 1, 1), c(1, 0, 1)}
+    };
+    for (const auto& q : quads)
+    {
+        cup.triangles.push_back({q[0], q[1], q[2]});
+        cup.triangles.push_back({q[0], q[2], q[3]});
+    }
+    cup.solid.assign(cup.triangles.size(), 0);
+    cup.solidNames = {"cup"};
+    domainBox floor = boxAround(-3, 3);
+    floor.min[2] = 0;
+    putBodiesInDomain(cup, floor, "the cup");
+    EXPECT_NO_THROW(checkStl(cup, "the cup"));
+    // The box less the cup above the floor (4 less its cavity's 0.5) and
+    // less the pocket (0.5): one shell
+    EXPECT_NEAR(enclosedVolume(cup), 6*6*3 - 3.5 - 0.5, 1e-10);
+    label nShells = 0;
+    surfaceShells(label(cup.points.size()), cup.triangles, nShells);
+    EXPECT_EQ(nShells, 1);
 }
 
 
