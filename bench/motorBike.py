@@ -1,0 +1,201 @@
+#!/usr/bin/env python3
+"""OpenFOAM's motorBike, meshed by OpenFOAM's own tutorial and by pmshFoam's, side by side.
+
+bench/run --motorbike (bench/README.md, "motorBike") builds two cases in
+its work directory, one after the other on the same machine, 2 ranks each:
+
+- snappyHexMesh: OpenFOAM's tutorial incompressible/simpleFoam/motorBike
+  of the OpenFOAM the build uses, as its Allrun runs it
+  (surfaceFeatureExtract, blockMesh, decomposePar, snappyHexMesh, its 0.orig
+  in each processor directory, potentialFoam -writephi, simpleFoam);
+- pmshFoam: tutorials/motorBike as its Allrun runs it (pmshFoam -parallel,
+  simpleFoam).
+
+Both solve with the same schemes, solvers, models and 500 iterations (the
+tutorial's; pmshFoam's case copies them). For each: cells, meshing wall
+time (from the surface to a case ready for simpleFoam -parallel), layer
+coverage on the bike (snappyHexMesh: its mean layers per face over the
+bike's faces, the tutorial asks one; pmshFoam: the share of the bike's
+faces with their layer), checkMesh's worst faces, simpleFoam's time, and
+the last Cd and Cl.
+
+Results: bench/results/motorbike.md and .json (--out DIR elsewhere).
+"""
+
+import argparse
+import glob
+import json
+import os
+import re
+import shutil
+import sys
+import time
+
+BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
+PROJECT_DIR = os.path.dirname(BENCH_DIR)
+sys.path.insert(0, BENCH_DIR)
+sys.path.insert(0, os.path.join(PROJECT_DIR, "tools"))
+import dragStudy as ds  # noqa: E402
+import foamCase as fc  # noqa: E402
+
+RANKS = 2
+
+
+def openfoam_tutorial():
+    return os.path.join(fc.environment()["WM_PROJECT_DIR"], "tutorials", "incompressible",
+                        "simpleFoam", "motorBike")
+
+
+def bike_obj():
+    return os.path.join(fc.environment()["WM_PROJECT_DIR"], "tutorials", "resources",
+                        "geometry", "motorBike.obj.gz")
+
+
+def coefficients(case):
+    """The last Cd and Cl the forceCoeffs function object wrote"""
+    files = sorted(glob.glob(os.path.join(case, "postProcessing", "forceCoeffs*", "0",
+                                          "coefficient*.dat")))
+    header, last = None, None
+    for path in files:
+        with open(path) as f:
+            for line in f:
+                if line.startswith("# Time"):
+                    header = line[1:].split()
+                elif line.strip() and not line.startswith("#"):
+                    last = line.split()
+    if not header or not last:
+        return None, None
+    return float(last[header.index("Cd")]), float(last[header.index("Cl")])
+
+
+def snappy_case(case):
+    """OpenFOAM's motorBike tutorial meshed as its Allrun does, on RANKS
+    ranks: (ok, meshing wall seconds, last log)"""
+    shutil.copytree(openfoam_tutorial(), case)
+    os.makedirs(os.path.join(case, "constant", "triSurface"), exist_ok=True)
+    shutil.copy(bike_obj(), os.path.join(case, "constant", "triSurface"))
+    with open(os.path.join(case, "system", "decomposeParDict"), "w") as f:
+        f.write("FoamFile { version 2.0; format ascii; class dictionary;"
+                " object decomposeParDict; }\nnumberOfSubdomains %d;\n"
+                "method hierarchical;\nhierarchicalCoeffs { n (%d 1 1); order xyz; }\n"
+                % (RANKS, RANKS))
+    done = ds.run_in_turn((
+        lambda: ds.run(["surfaceFeatureExtract"], case, "log.surfaceFeatureExtract"),
+        lambda: ds.run(["blockMesh"], case, "log.blockMesh"),
+        lambda: ds.run(["decomposePar"], case, "log.decomposePar"),
+        lambda: ds.run(["snappyHexMesh", "-overwrite"], case, "log.snappyHexMesh",
+                       np=RANKS)))
+    if done[0]:
+        for d in glob.glob(os.path.join(case, "processor*")):
+            shutil.rmtree(os.path.join(d, "0"), ignore_errors=True)
+            shutil.copytree(os.path.join(case, "0.orig"), os.path.join(d, "0"))
+    return done
+
+
+def snappy_solve(case):
+    return ds.run_in_turn((
+        lambda: ds.run(["potentialFoam", "-writephi"], case, "log.potentialFoam", np=RANKS),
+        lambda: ds.run(["simpleFoam"], case, "log.simpleFoam", np=RANKS)))
+
+
+def snappy_coverage(case):
+    """Mean layers per face over the bike's patches, from snappyHexMesh's
+    last layer table"""
+    with open(os.path.join(case, "log.snappyHexMesh"), errors="replace") as f:
+        text = f.read()
+    table = text[text.rfind("overall thickness"):]
+    rows = re.findall(r"^(motorBike\S*)\s+(\d+)\s+([0-9.eE+-]+)\s", table, re.M)
+    faces = sum(int(n) for _, n, _ in rows)
+    return sum(int(n) * float(layers) for _, n, layers in rows) / faces if faces else None
+
+
+def pmsh_case(case):
+    shutil.copytree(os.path.join(PROJECT_DIR, "tutorials", "motorBike"), case)
+    os.makedirs(os.path.join(case, "constant", "geometry"), exist_ok=True)
+    shutil.copy(bike_obj(), os.path.join(case, "constant", "geometry"))
+    return ds.run(["pmshFoam"], case, "log.pmshFoam", np=RANKS)
+
+
+def pmsh_solve(case):
+    return ds.run(["simpleFoam"], case, "log.simpleFoam", np=RANKS)
+
+
+def pmsh_coverage(case):
+    """The share of the bike's wall faces with all their layers"""
+    layers = fc.summary(case).get("layers") or {}
+    faces = sum(p["faces"] for p in layers.values())
+    return sum(p["faces"] * p["coverage"] for p in layers.values()) / faces if faces else None
+
+
+def measure(name, work, build, solve, coverage):
+    case = os.path.join(work, name)
+    shutil.rmtree(case, ignore_errors=True)
+    print("%s: meshing" % name, flush=True)
+    ok, mesh_wall, text = build(case)
+    row = {"mesher": name, "meshed": ok, "meshingSeconds": round(mesh_wall, 1)}
+    if not ok:
+        row["error"] = text[-2000:]
+        return row
+    checks = fc.check_mesh(case, RANKS)
+    row.update({k: checks.get(k) for k in ("cells", "meshOK", "maxNonOrtho", "maxSkewness")})
+    row["layerCoverage"] = coverage(case)
+    print("%s: %s cells in %.0f s; solving" % (name, row["cells"], mesh_wall), flush=True)
+    ok, solve_wall, text = solve(case)
+    row.update({"solved": ok, "solverSeconds": round(solve_wall, 1)})
+    row["Cd"], row["Cl"] = coefficients(case)
+    if not ok:
+        row["error"] = text[-2000:]
+    print("%s: Cd %s, Cl %s in %.0f s" % (name, row["Cd"], row["Cl"], solve_wall), flush=True)
+    return row
+
+
+def write(rows, out):
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "motorbike.json"), "w") as f:
+        json.dump({"date": time.strftime("%Y-%m-%d"), "ranks": RANKS, "rows": rows}, f, indent=1)
+
+    def fmt(v, spec):
+        return "-" if v is None else spec % v
+
+    lines = [
+        "# OpenFOAM's motorBike: its tutorial's snappyHexMesh mesh and pmshFoam's",
+        "",
+        "Made by `bench/run --motorbike` (bench/motorBike.py) on %s, %d ranks each, one"
+        " after the other on this machine. Both solved by simpleFoam with the tutorial's"
+        " schemes, solvers, kOmegaSST and its 500 iterations; Cd and Cl are the last"
+        " iteration's (Aref 0.75, lRef 1.42, as the tutorial). Meshing: from the surface"
+        " to a case ready for `simpleFoam -parallel`. Layers: the tutorial asks one on"
+        " the bike; coverage is snappyHexMesh's mean layers per bike face and pmshFoam's"
+        " share of bike faces with their layer." % (time.strftime("%Y-%m-%d"), RANKS),
+        "",
+        "| mesher | cells | meshing [s] | layer coverage | max non-orth | max skewness"
+        " | checkMesh | simpleFoam [s] | Cd | Cl |",
+        "|---|---:|---:|---:|---:|---:|---|---:|---:|---:|",
+    ]
+    for r in rows:
+        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            r["mesher"], "{:,}".format(r["cells"]) if r.get("cells") else "-",
+            fmt(r.get("meshingSeconds"), "%.0f"),
+            fmt(r.get("layerCoverage") and 100 * r["layerCoverage"], "%.1f %%"),
+            fmt(r.get("maxNonOrtho"), "%.1f"), fmt(r.get("maxSkewness"), "%.2f"),
+            "Mesh OK" if r.get("meshOK") else "-",
+            fmt(r.get("solverSeconds"), "%.0f"), fmt(r.get("Cd"), "%.3f"),
+            fmt(r.get("Cl"), "%.3f")))
+    with open(os.path.join(out, "motorbike.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", default=os.path.join(BENCH_DIR, "results"))
+    parser.add_argument("--work", default="/tmp/pmsh-bench-motorbike")
+    args = parser.parse_args()
+    os.makedirs(args.work, exist_ok=True)
+    rows = [measure("snappyHexMesh", args.work, snappy_case, snappy_solve, snappy_coverage),
+            measure("pmshFoam", args.work, pmsh_case, pmsh_solve, pmsh_coverage)]
+    write(rows, args.out)
+    return 0 if all(r.get("solved") for r in rows) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
