@@ -274,6 +274,19 @@ double areaOfSolid(const stlSurface& s, const std::string& name)
     return area;
 }
 
+//- An octahedron (solid "tip") of radius 1 standing on its tip at the
+//  origin.
+stlSurface octahedronOnItsTip()
+{
+    stlSurface tip;
+    tip.points = {{0, 0, 0}, {1, 0, 1}, {0, 1, 1}, {-1, 0, 1}, {0, -1, 1}, {0, 0, 2}};
+    tip.triangles = {{0, 2, 1}, {0, 3, 2}, {0, 4, 3}, {0, 1, 4},
+                     {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 1}};
+    tip.solid.assign(8, 0);
+    tip.solidNames = {"tip"};
+    return tip;
+}
+
 } // End anonymous namespace
 
 
@@ -332,16 +345,11 @@ TEST(domainBox, aBodyThroughTheBoxIsCutOutOfItAndKeepsItsPatchesInside)
 
 TEST(domainBox, aBodyOnAPlinthMeetsTheSideAtRightAnglesInsteadOfTouchingIt)
 {
-    // The octahedron of the next test, standing on its tip on the floor,
-    // on a plinth 0.1 high: its part below z = 0.1 (a pyramid) replaced
+    // The octahedron standing on its tip on the floor, on a plinth 0.1
+    // high: its part below z = 0.1 (a pyramid) replaced
     // by the section there (a square of area 2*0.1^2) drawn down through
     // the floor
-    stlSurface tip;
-    tip.points = {{0, 0, 0}, {1, 0, 1}, {0, 1, 1}, {-1, 0, 1}, {0, -1, 1}, {0, 0, 2}};
-    tip.triangles = {{0, 2, 1}, {0, 3, 2}, {0, 4, 3}, {0, 1, 4},
-                     {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 1}};
-    tip.solid.assign(8, 0);
-    tip.solidNames = {"tip"};
+    stlSurface tip = octahedronOnItsTip();
     domainBox floor = boxAround(-3, 3);
     floor.min[2] = 0;
     floor.plinthHeight = 0.1;
@@ -443,12 +451,7 @@ TEST(domainBox, aBodyTouchingTheBoxAtAPointOrWhollyOutsideOrAPatchOfASideStopsNa
     const tempDir dir("domainBox");
     // An octahedron standing on its tip on the box's floor: the fluid
     // would end in a wedge of zero angle there
-    stlSurface tip;
-    tip.points = {{0, 0, 0}, {1, 0, 1}, {0, 1, 1}, {-1, 0, 1}, {0, -1, 1}, {0, 0, 2}};
-    tip.triangles = {{0, 2, 1}, {0, 3, 2}, {0, 4, 3}, {0, 1, 4},
-                     {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 1}};
-    tip.solid.assign(8, 0);
-    tip.solidNames = {"tip"};
+    stlSurface tip = octahedronOnItsTip();
     domainBox floor = boxAround(-3, 3);
     floor.min[2] = 0;
     EXPECT_FATAL(putBodiesInDomain(tip, floor, "the octahedron"),
