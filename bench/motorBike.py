@@ -1,17 +1,19 @@
 #!/usr/bin/env python3
 """OpenFOAM's motorBike, meshed by OpenFOAM's own tutorial and by pmshFoam's, side by side.
 
-bench/run --motorbike (bench/README.md, "motorBike") builds two cases in
-its work directory, one after the other on the same machine, 2 ranks each:
+bench/run --motorbike (bench/README.md, "motorBike") builds its cases in
+its work directory, one after the other on the same machine:
 
 - snappyHexMesh: OpenFOAM's tutorial incompressible/simpleFoam/motorBike
   of the OpenFOAM the build uses, as its Allrun runs it
   (surfaceFeatureExtract, blockMesh, decomposePar, snappyHexMesh, its 0.orig
-  in each processor directory, potentialFoam -writephi, simpleFoam);
+  in each processor directory, potentialFoam -writephi, simpleFoam), on 2
+  ranks and on the 6 of its Allrun (decomposeParDict.6; on 2 cores
+  oversubscribed, so its times do not compare);
 - pmshFoam: tutorials/motorBike as its Allrun runs it (pmshFoam -parallel,
-  simpleFoam).
+  simpleFoam), on 2 ranks.
 
-Both solve with the same schemes, solvers, models and 500 iterations (the
+All solve with the same schemes, solvers, models and 500 iterations (the
 tutorial's; pmshFoam's case copies them). For each: cells, meshing wall
 time (from the surface to a case ready for simpleFoam -parallel), layer
 coverage on the bike (snappyHexMesh: its mean layers per face over the
@@ -39,6 +41,8 @@ import dragStudy as ds  # noqa: E402
 import foamCase as fc  # noqa: E402
 
 RANKS = 2
+# OpenFOAM's Allrun decomposes the motorBike into 6 (decomposeParDict.6)
+TUTORIAL_RANKS = 6
 
 
 def openfoam_tutorial():
@@ -68,23 +72,28 @@ def coefficients(case):
     return float(last[header.index("Cd")]), float(last[header.index("Cl")])
 
 
-def snappy_case(case):
-    """OpenFOAM's motorBike tutorial meshed as its Allrun does, on RANKS
-    ranks: (ok, meshing wall seconds, last log)"""
+def snappy_case(case, ranks):
+    """OpenFOAM's motorBike tutorial meshed as its Allrun does, on `ranks`
+    ranks (its own decomposeParDict.6 for 6, hierarchical along x
+    otherwise): (ok, meshing wall seconds, last log)"""
     shutil.copytree(openfoam_tutorial(), case)
     os.makedirs(os.path.join(case, "constant", "triSurface"), exist_ok=True)
     shutil.copy(bike_obj(), os.path.join(case, "constant", "triSurface"))
-    with open(os.path.join(case, "system", "decomposeParDict"), "w") as f:
-        f.write("FoamFile { version 2.0; format ascii; class dictionary;"
-                " object decomposeParDict; }\nnumberOfSubdomains %d;\n"
-                "method hierarchical;\nhierarchicalCoeffs { n (%d 1 1); order xyz; }\n"
-                % (RANKS, RANKS))
+    decompose_dict = os.path.join(case, "system", "decomposeParDict")
+    if ranks == TUTORIAL_RANKS:
+        shutil.copy(decompose_dict + ".6", decompose_dict)
+    else:
+        with open(decompose_dict, "w") as f:
+            f.write("FoamFile { version 2.0; format ascii; class dictionary;"
+                    " object decomposeParDict; }\nnumberOfSubdomains %d;\n"
+                    "method hierarchical;\nhierarchicalCoeffs { n (%d 1 1); order xyz; }\n"
+                    % (ranks, ranks))
     done = ds.run_in_turn((
         lambda: ds.run(["surfaceFeatureExtract"], case, "log.surfaceFeatureExtract"),
         lambda: ds.run(["blockMesh"], case, "log.blockMesh"),
         lambda: ds.run(["decomposePar"], case, "log.decomposePar"),
         lambda: ds.run(["snappyHexMesh", "-overwrite"], case, "log.snappyHexMesh",
-                       np=RANKS)))
+                       np=ranks)))
     if done[0]:
         for d in glob.glob(os.path.join(case, "processor*")):
             shutil.rmtree(os.path.join(d, "0"), ignore_errors=True)
@@ -92,10 +101,10 @@ def snappy_case(case):
     return done
 
 
-def snappy_solve(case):
+def snappy_solve(case, ranks):
     return ds.run_in_turn((
-        lambda: ds.run(["potentialFoam", "-writephi"], case, "log.potentialFoam", np=RANKS),
-        lambda: ds.run(["simpleFoam"], case, "log.simpleFoam", np=RANKS)))
+        lambda: ds.run(["potentialFoam", "-writephi"], case, "log.potentialFoam", np=ranks),
+        lambda: ds.run(["simpleFoam"], case, "log.simpleFoam", np=ranks)))
 
 
 def snappy_coverage(case):
@@ -109,15 +118,15 @@ def snappy_coverage(case):
     return sum(int(n) * float(layers) for _, n, layers in rows) / faces if faces else None
 
 
-def pmsh_case(case):
+def pmsh_case(case, ranks):
     shutil.copytree(os.path.join(PROJECT_DIR, "tutorials", "motorBike"), case)
     os.makedirs(os.path.join(case, "constant", "geometry"), exist_ok=True)
     shutil.copy(bike_obj(), os.path.join(case, "constant", "geometry"))
-    return ds.run(["pmshFoam"], case, "log.pmshFoam", np=RANKS)
+    return ds.run(["pmshFoam"], case, "log.pmshFoam", np=ranks)
 
 
-def pmsh_solve(case):
-    return ds.run(["simpleFoam"], case, "log.simpleFoam", np=RANKS)
+def pmsh_solve(case, ranks):
+    return ds.run(["simpleFoam"], case, "log.simpleFoam", np=ranks)
 
 
 def pmsh_coverage(case):
@@ -127,20 +136,21 @@ def pmsh_coverage(case):
     return sum(p["faces"] * p["coverage"] for p in layers.values()) / faces if faces else None
 
 
-def measure(name, work, build, solve, coverage):
-    case = os.path.join(work, name)
+def measure(name, ranks, work, build, solve, coverage):
+    case = os.path.join(work, name.split(",")[0] + str(ranks))
     shutil.rmtree(case, ignore_errors=True)
     print("%s: meshing" % name, flush=True)
-    ok, mesh_wall, text = build(case)
-    row = {"mesher": name, "meshed": ok, "meshingSeconds": round(mesh_wall, 1)}
+    ok, mesh_wall, text = build(case, ranks)
+    row = {"mesher": name, "ranks": ranks, "meshed": ok,
+           "meshingSeconds": round(mesh_wall, 1)}
     if not ok:
         row["error"] = text[-2000:]
         return row
-    checks = fc.check_mesh(case, RANKS)
+    checks = fc.check_mesh(case, ranks)
     row.update({k: checks.get(k) for k in ("cells", "meshOK", "maxNonOrtho", "maxSkewness")})
     row["layerCoverage"] = coverage(case)
     print("%s: %s cells in %.0f s; solving" % (name, row["cells"], mesh_wall), flush=True)
-    ok, solve_wall, text = solve(case)
+    ok, solve_wall, text = solve(case, ranks)
     row.update({"solved": ok, "solverSeconds": round(solve_wall, 1)})
     row["Cd"], row["Cl"] = coefficients(case)
     if not ok:
@@ -152,7 +162,7 @@ def measure(name, work, build, solve, coverage):
 def write(rows, out):
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "motorbike.json"), "w") as f:
-        json.dump({"date": time.strftime("%Y-%m-%d"), "ranks": RANKS, "rows": rows}, f, indent=1)
+        json.dump({"date": time.strftime("%Y-%m-%d"), "rows": rows}, f, indent=1)
 
     def fmt(v, spec):
         return "-" if v is None else spec % v
@@ -160,27 +170,29 @@ def write(rows, out):
     lines = [
         "# OpenFOAM's motorBike: its tutorial's snappyHexMesh mesh and pmshFoam's",
         "",
-        "Made by `bench/run --motorbike` (bench/motorBike.py) on %s, %d ranks each, one"
-        " after the other on this machine. Both solved by simpleFoam with the tutorial's"
+        "Made by `bench/run --motorbike` (bench/motorBike.py) on %s, one case after the"
+        " other on this machine (2 cores: 6 ranks are oversubscribed, their times do not"
+        " compare). Each solved by simpleFoam with the tutorial's"
         " schemes, solvers, kOmegaSST and its 500 iterations; Cd and Cl are the last"
         " iteration's (Aref 0.75, lRef 1.42, as the tutorial). Meshing: from the surface"
         " to a case ready for `simpleFoam -parallel`. Layers: the tutorial asks one on"
         " the bike; coverage is snappyHexMesh's mean layers per bike face and pmshFoam's"
-        " share of bike faces with their layer." % (time.strftime("%Y-%m-%d"), RANKS),
+        " share of bike faces with their layer." % time.strftime("%Y-%m-%d"),
         "",
-        "| mesher | cells | meshing [s] | layer coverage | max non-orth | max skewness"
+        "| mesher | ranks | cells | meshing [s] | layer coverage | max non-orth | max skewness"
         " | checkMesh | simpleFoam [s] | Cd | Cl |",
-        "|---|---:|---:|---:|---:|---:|---|---:|---:|---:|",
+        "|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|",
     ]
     for r in rows:
-        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
-            r["mesher"], "{:,}".format(r["cells"]) if r.get("cells") else "-",
+        lines.append("| %s | %d | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            r["mesher"], r["ranks"], "{:,}".format(r["cells"]) if r.get("cells") else "-",
             fmt(r.get("meshingSeconds"), "%.0f"),
             fmt(r.get("layerCoverage") and 100 * r["layerCoverage"], "%.1f %%"),
             fmt(r.get("maxNonOrtho"), "%.1f"), fmt(r.get("maxSkewness"), "%.2f"),
-            "Mesh OK" if r.get("meshOK") else "-",
-            fmt(r.get("solverSeconds"), "%.0f"), fmt(r.get("Cd"), "%.3f"),
-            fmt(r.get("Cl"), "%.3f")))
+            "Mesh OK" if r.get("meshOK") else ("failed" if r.get("meshed") else "-"),
+            fmt(r.get("solverSeconds"), "%.0f"),
+            fmt(r.get("Cd"), "%.3f") if r.get("solved") else "diverged",
+            fmt(r.get("Cl"), "%.3f") if r.get("solved") else "-"))
     with open(os.path.join(out, "motorbike.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
 
@@ -189,10 +201,26 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", default=os.path.join(BENCH_DIR, "results"))
     parser.add_argument("--work", default="/tmp/pmsh-bench-motorbike")
+    parser.add_argument("--snappy-ranks", type=int, nargs="*", default=[RANKS, TUTORIAL_RANKS],
+                        help="snappyHexMesh's runs (default: 2, and 6 as the tutorial)")
+    parser.add_argument("--no-pmsh", action="store_true", help="snappyHexMesh's runs only")
+    parser.add_argument("--merge", action="store_true",
+                        help="keep the other rows of an earlier motorbike.json in --out")
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
-    rows = [measure("snappyHexMesh", args.work, snappy_case, snappy_solve, snappy_coverage),
-            measure("pmshFoam", args.work, pmsh_case, pmsh_solve, pmsh_coverage)]
+    rows = [measure("snappyHexMesh", n, args.work, snappy_case, snappy_solve, snappy_coverage)
+            for n in args.snappy_ranks]
+    if not args.no_pmsh:
+        rows.append(measure("pmshFoam", RANKS, args.work, pmsh_case, pmsh_solve,
+                            pmsh_coverage))
+    if args.merge and os.path.exists(os.path.join(args.out, "motorbike.json")):
+        with open(os.path.join(args.out, "motorbike.json")) as f:
+            earlier = json.load(f)["rows"]
+        for r in earlier:
+            r.setdefault("ranks", RANKS)
+        new = {(r["mesher"], r["ranks"]) for r in rows}
+        rows = [r for r in earlier if (r["mesher"], r.get("ranks", RANKS)) not in new] + rows
+        rows.sort(key=lambda r: (r["mesher"] != "snappyHexMesh", r.get("ranks", RANKS)))
     write(rows, args.out)
     return 0 if all(r.get("solved") for r in rows) else 1
 
