@@ -1,8 +1,8 @@
 """The surfaces OpenFOAM ships (Debian's openfoam-examples,
 examples/resources/geometry), each as a body in pmshDict's domain box,
 meshed on 2 ranks and judged by checkMesh -parallel: clean CAD as it is
-(bullet, blob, flange, building_wtc2; the DTC hull with its coarse
-surface remeshed), dirty CAD wrapped (wigley's half hull, not
+(the bullet standing on a side, blob, flange, building_wtc2; the DTC
+hull with its coarse surface remeshed), dirty CAD wrapped (wigley's half hull, not
 manifold; propellerTip, cyclone and the motorBike's helmet, open); the
 motorBike itself is tutorials/motorBike, on its floor (testMotorBike.py).
 Sizes from each surface's extent d: maxCellSize d/2, d/20 on the body,
@@ -67,9 +67,6 @@ class shippedSurfaces(CaseTest):
         self.assertEqual("bodies cut by the domain box: they reach its side(s) %s;"
                          % standing_on in log, standing_on is not None)
         return log
-
-    def test_bulletNp2(self):
-        self.mesh_in_a_box("bullet.stl.gz", wrapped=False)
 
     def test_blobNp2(self):
         self.mesh_in_a_box("blob.stl.gz", wrapped=False)
