@@ -9,7 +9,8 @@ its work directory, one after the other on the same machine:
   (surfaceFeatureExtract, blockMesh, decomposePar, snappyHexMesh, its 0.orig
   in each processor directory, potentialFoam -writephi, simpleFoam), on 2
   ranks and on the 6 of its Allrun (decomposeParDict.6; on 2 cores
-  oversubscribed, so its times do not compare);
+  oversubscribed, so its times do not compare), and on 2 ranks again
+  solved as pmshFoam's is, from the uniform fields without potentialFoam;
 - pmshFoam: tutorials/motorBike as its Allrun runs it (pmshFoam -parallel,
   simpleFoam), on 2 ranks.
 
@@ -43,6 +44,7 @@ import foamCase as fc  # noqa: E402
 RANKS = 2
 # OpenFOAM's Allrun decomposes the motorBike into 6 (decomposeParDict.6)
 TUTORIAL_RANKS = 6
+UNIFORM = "snappyHexMesh, no potentialFoam"
 
 
 def openfoam_tutorial():
@@ -107,6 +109,12 @@ def snappy_solve(case, ranks):
         lambda: ds.run(["simpleFoam"], case, "log.simpleFoam", np=ranks)))
 
 
+def snappy_solve_from_uniform(case, ranks):
+    """simpleFoam from 0.orig's uniform fields, as tutorials/motorBike
+    starts: without potentialFoam"""
+    return ds.run(["simpleFoam"], case, "log.simpleFoam", np=ranks)
+
+
 def snappy_coverage(case):
     """Mean layers per face over the bike's patches, from snappyHexMesh's
     last layer table"""
@@ -137,7 +145,7 @@ def pmsh_coverage(case):
 
 
 def measure(name, ranks, work, build, solve, coverage):
-    case = os.path.join(work, name.split(",")[0] + str(ranks))
+    case = os.path.join(work, re.sub(r"\W", "", name) + str(ranks))
     shutil.rmtree(case, ignore_errors=True)
     print("%s: meshing" % name, flush=True)
     ok, mesh_wall, text = build(case, ranks)
@@ -173,7 +181,9 @@ def write(rows, out):
         "Made by `bench/run --motorbike` (bench/motorBike.py) on %s, one case after the"
         " other on this machine (2 cores: 6 ranks are oversubscribed, their times do not"
         " compare). Each solved by simpleFoam with the tutorial's"
-        " schemes, solvers, kOmegaSST and its 500 iterations; Cd and Cl are the last"
+        " schemes, solvers, kOmegaSST and its 500 iterations, started as its Allrun does"
+        " from potentialFoam, or from the uniform fields (\"no potentialFoam\", and"
+        " pmshFoam's, as its Allrun does); Cd and Cl are the last"
         " iteration's (Aref 0.75, lRef 1.42, as the tutorial). Meshing: from the surface"
         " to a case ready for `simpleFoam -parallel`. Layers: the tutorial asks one on"
         " the bike; coverage is snappyHexMesh's mean layers per bike face and pmshFoam's"
@@ -203,6 +213,9 @@ def main():
     parser.add_argument("--work", default="/tmp/pmsh-bench-motorbike")
     parser.add_argument("--snappy-ranks", type=int, nargs="*", default=[RANKS, TUTORIAL_RANKS],
                         help="snappyHexMesh's runs (default: 2, and 6 as the tutorial)")
+    parser.add_argument("--uniform-ranks", type=int, nargs="*", default=[RANKS],
+                        help="snappyHexMesh's runs solved from the uniform fields, without"
+                        " potentialFoam, as pmshFoam's (default: 2)")
     parser.add_argument("--no-pmsh", action="store_true", help="snappyHexMesh's runs only")
     parser.add_argument("--merge", action="store_true",
                         help="keep the other rows of an earlier motorbike.json in --out")
@@ -210,6 +223,9 @@ def main():
     os.makedirs(args.work, exist_ok=True)
     rows = [measure("snappyHexMesh", n, args.work, snappy_case, snappy_solve, snappy_coverage)
             for n in args.snappy_ranks]
+    rows += [measure(UNIFORM, n, args.work, snappy_case, snappy_solve_from_uniform,
+                     snappy_coverage)
+             for n in args.uniform_ranks]
     if not args.no_pmsh:
         rows.append(measure("pmshFoam", RANKS, args.work, pmsh_case, pmsh_solve,
                             pmsh_coverage))
@@ -220,7 +236,8 @@ def main():
             r.setdefault("ranks", RANKS)
         new = {(r["mesher"], r["ranks"]) for r in rows}
         rows = [r for r in earlier if (r["mesher"], r.get("ranks", RANKS)) not in new] + rows
-        rows.sort(key=lambda r: (r["mesher"] != "snappyHexMesh", r.get("ranks", RANKS)))
+        order = ["snappyHexMesh", UNIFORM, "pmshFoam"]
+        rows.sort(key=lambda r: (order.index(r["mesher"]), r.get("ranks", RANKS)))
     write(rows, args.out)
     return 0 if all(r.get("solved") for r in rows) else 1
 
