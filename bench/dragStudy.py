@@ -454,10 +454,18 @@ def build_snappy(study, m, case, np):
                         lambda: run(["snappyHexMesh", "-overwrite"], case,
                                     "log.snappyHexMesh", np=np)))
     if done[0]:
-        for d in glob.glob(os.path.join(case, "processor*")):
-            shutil.rmtree(os.path.join(d, "0"), ignore_errors=True)
-            shutil.copytree(os.path.join(case, "0"), os.path.join(d, "0"))
+        fields_into_processors(case, "0")
     return done
+
+
+def fields_into_processors(case, fields):
+    """The case's uniform initial fields (directory `fields`) as every
+    processor directory's 0/, as OpenFOAM's motorBike Allrun restores them
+    (restore0Dir -processor): their constraint types come from
+    setConstraintTypes"""
+    for d in glob.glob(os.path.join(case, "processor*")):
+        shutil.rmtree(os.path.join(d, "0"), ignore_errors=True)
+        shutil.copytree(os.path.join(case, fields), os.path.join(d, "0"))
 
 
 def snappy_layer_coverage(case, patch):

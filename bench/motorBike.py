@@ -97,9 +97,7 @@ def snappy_case(case, ranks):
         lambda: ds.run(["snappyHexMesh", "-overwrite"], case, "log.snappyHexMesh",
                        np=ranks)))
     if done[0]:
-        for d in glob.glob(os.path.join(case, "processor*")):
-            shutil.rmtree(os.path.join(d, "0"), ignore_errors=True)
-            shutil.copytree(os.path.join(case, "0.orig"), os.path.join(d, "0"))
+        ds.fields_into_processors(case, "0.orig")
     return done
 
 
