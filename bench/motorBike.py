@@ -26,7 +26,6 @@ Results: bench/results/motorbike.md and .json (--out DIR elsewhere).
 """
 
 import argparse
-import glob
 import json
 import os
 import re
@@ -55,23 +54,6 @@ def openfoam_tutorial():
 def bike_obj():
     return os.path.join(fc.environment()["WM_PROJECT_DIR"], "tutorials", "resources",
                         "geometry", "motorBike.obj.gz")
-
-
-def coefficients(case):
-    """The last Cd and Cl the forceCoeffs function object wrote"""
-    files = sorted(glob.glob(os.path.join(case, "postProcessing", "forceCoeffs*", "0",
-                                          "coefficient*.dat")))
-    header, last = None, None
-    for path in files:
-        with open(path) as f:
-            for line in f:
-                if line.startswith("# Time"):
-                    header = line[1:].split()
-                elif line.strip() and not line.startswith("#"):
-                    last = line.split()
-    if not header or not last:
-        return None, None
-    return float(last[header.index("Cd")]), float(last[header.index("Cl")])
 
 
 def snappy_case(case, ranks):
@@ -158,7 +140,8 @@ def measure(name, ranks, work, build, solve, coverage):
     print("%s: %s cells in %.0f s; solving" % (name, row["cells"], mesh_wall), flush=True)
     ok, solve_wall, text = solve(case, ranks)
     row.update({"solved": ok, "solverSeconds": round(solve_wall, 1)})
-    row["Cd"], row["Cl"] = coefficients(case)
+    _, last = fc.last_force_coefficients(case)
+    row["Cd"], row["Cl"] = last.get("Cd"), last.get("Cl")
     if not ok:
         row["error"] = text[-2000:]
     print("%s: Cd %s, Cl %s in %.0f s" % (name, row["Cd"], row["Cl"], solve_wall), flush=True)

@@ -13,6 +13,7 @@ passing test) are the same on top of them for the tests.
 
 import gzip
 import json
+import glob
 import os
 import re
 import shutil
@@ -154,6 +155,24 @@ def check_mesh(case, ranks=1, env=None):
                        stdout=out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
     with open(log, errors="replace") as f:
         return read_check_mesh(f.read())
+
+
+def last_force_coefficients(case, names=("Cd", "Cl")):
+    """(iteration, {name: value}) of the last row the forceCoeffs function
+    objects of a case wrote (postProcessing/forceCoeffs*/0/coefficient*.dat,
+    columns by the file's header), or (None, {}) where there is none"""
+    header, last = None, None
+    for path in sorted(glob.glob(os.path.join(case, "postProcessing", "forceCoeffs*", "0",
+                                              "coefficient*.dat"))):
+        with open(path) as f:
+            for line in f:
+                if line.startswith("# Time"):
+                    header = line[1:].split()
+                elif line.strip() and not line.startswith("#"):
+                    last = line.split()
+    if not header or not last:
+        return None, {}
+    return int(float(last[0])), {n: float(last[header.index(n)]) for n in names}
 
 
 # The surfaces OpenFOAM ships (Debian's openfoam-examples)
