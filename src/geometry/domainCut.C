@@ -156,6 +156,15 @@ bool reachesSide(const Mesh& m, const int axis, const bool high, const double wa
 }
 
 
+//- p with its coordinate along axis set to x.
+pmsh::cgal::Point withCoordinate(const pmsh::cgal::Point& p, const int axis, const double x)
+{
+    std::array<double, 3> c{p.x(), p.y(), p.z()};
+    c[axis] = x;
+    return pmsh::cgal::Point(c[0], c[1], c[2]);
+}
+
+
 //- body (closed, connected, reaching the side at `wall` of axis) with its
 //  part within `height` of the side replaced by its section at that
 //  height drawn out `height` beyond the side: a plinth, as wind tunnels
@@ -175,12 +184,7 @@ bool plinthed(Mesh& body, const int axis, const bool high, const double wall, co
     {
         towardsWall = -towardsWall;
     }
-    pmsh::cgal::Point onLevel(0, 0, 0);
-    {
-        std::array<double, 3> x{0, 0, 0};
-        x[axis] = level;
-        onLevel = pmsh::cgal::Point(x[0], x[1], x[2]);
-    }
+    const pmsh::cgal::Point onLevel = withCoordinate(CGAL::ORIGIN, axis, level);
     // CGAL keeps the side away from the wall (the plane's negative side)
     // and closes the volume with faces on the plane: the section
     Mesh clipped = body;
@@ -237,10 +241,7 @@ bool plinthed(Mesh& body, const int axis, const bool high, const double wall, co
     {
         if (moved[v] == none)
         {
-            const pmsh::cgal::Point& p = clipped.point(v);
-            std::array<double, 3> x{p.x(), p.y(), p.z()};
-            x[axis] = beyond;
-            moved[v] = out.add_vertex(pmsh::cgal::Point(x[0], x[1], x[2]));
+            moved[v] = out.add_vertex(withCoordinate(clipped.point(v), axis, beyond));
         }
         return moved[v];
     };
