@@ -7,7 +7,7 @@
 #include "pmshError.H"
 #include "surfaceBuilder.H"
 
-#include <CGAL/Polygon_mesh_processing/clip.h>
+#include <CGAL/Polygon_mesh_processing/bbox.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
@@ -43,8 +43,8 @@ constexpr int squaresAcrossSide = 32;
 constexpr int longestSquares = 256;
 
 
-//- The box's sides, outward, as grids of squares of two triangles.
-Mesh boxMesh(const pmsh::point3& min, const pmsh::point3& max)
+//- The number of squares along each edge of the domain box's sides.
+std::array<int, 3> squaresAlongEdges(const pmsh::point3& min, const pmsh::point3& max)
 {
     using namespace pmsh;
     const vector3 extent = max - min;
@@ -58,7 +58,16 @@ Mesh boxMesh(const pmsh::point3& min, const pmsh::point3& max)
     {
         n[k] = std::max(1, int(std::lround(extent[k]/spacing)));
     }
+    return n;
+}
 
+
+//- The box's sides, outward, as grids of n squares of two triangles along
+//  each axis.
+Mesh boxMesh(const pmsh::point3& min, const pmsh::point3& max, const std::array<int, 3>& n)
+{
+    using namespace pmsh;
+    const vector3 extent = max - min;
     Mesh m;
     std::map<std::array<int, 3>, Mesh::Vertex_index> vertex;
     auto at = [&](const std::array<int, 3>& ijk)
@@ -184,20 +193,28 @@ bool plinthed(Mesh& body, const int axis, const bool high, const double wall, co
     {
         towardsWall = -towardsWall;
     }
-    const pmsh::cgal::Point onLevel = withCoordinate(CGAL::ORIGIN, axis, level);
-    // CGAL keeps the side away from the wall (the plane's negative side)
-    // and closes the volume with faces on the plane: the section
-    Mesh clipped = body;
+    // The body's part away from the wall, closed by faces on the level:
+    // its intersection with a box ending there. Not PMP::clip by a plane,
+    // which does the same but doubled this file's compile time (100 s
+    // against 57): it instantiates the corefinement again, which the cut
+    // by the domain box instantiates already.
+    const CGAL::Bbox_3 bounds = PMP::bbox(body);
+    const double margin = 1 + bounds.xmax() - bounds.xmin() + bounds.ymax() - bounds.ymin()
+        + bounds.zmax() - bounds.zmin();
+    pmsh::point3 boxMin{bounds.xmin() - margin, bounds.ymin() - margin, bounds.zmin() - margin};
+    pmsh::point3 boxMax{bounds.xmax() + margin, bounds.ymax() + margin, bounds.zmax() + margin};
+    (high ? boxMax : boxMin)[axis] = level;
+    Mesh awayFromWall = boxMesh(boxMin, boxMax, {1, 1, 1});
+    Mesh whole = body;
+    Mesh clipped;
     if
     (
-        !PMP::clip(clipped, pmsh::cgal::Kernel::Plane_3(onLevel, towardsWall),
-            CGAL::parameters::clip_volume(true))
+        !PMP::corefine_and_compute_intersection(whole, awayFromWall, clipped)
      || clipped.is_empty()
     )
     {
         return false;
     }
-    clipped.collect_garbage();
 
     const double tolerance = 1e-9*std::max(1.0, std::abs(level));
     const auto onSection = [&](const Mesh::Face_index f)
@@ -451,7 +468,7 @@ pmsh::stlSurface pmsh::boxMinusBodies
     const char* function = "pmsh::boxMinusBodies";
     const auto start = std::chrono::steady_clock::now();
 
-    Mesh fluid = boxMesh(min, max);
+    Mesh fluid = boxMesh(min, max, squaresAlongEdges(min, max));
     Mesh solid = bodyMesh(bodies, what);
     if (plinthHeight > 0)
     {
