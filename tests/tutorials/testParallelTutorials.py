@@ -60,13 +60,14 @@ class ParallelCaseTest(CaseTest):
         return c
 
 
-def make_cycle_test(name, np, r, backend):
-    """The full cycle with Netgen; with hxt the mesh and checkMesh -parallel
-    only: the solver and the reconstruction read what the same writer
-    writes whichever mesher filled the volume, and the netgen twin at the
-    same ranks and level runs them (3 s a test of CI's time)"""
+def make_cycle_test(name, np, r, backend, cycle):
+    """The mesh and checkMesh -parallel, and with cycle the solver and the
+    reconstruction too: they read what the same writer writes whichever
+    mesher filled the volume and whatever the number of ranks, so the
+    netgen tests at 2 ranks and r = 1 and at 4 ranks run them (2.5 s a
+    test of CI's time)"""
     def test(self):
-        if backend == "netgen":
+        if cycle:
             self.full_cycle(name, np, r, backend)
         else:
             self.mesh_parallel(name, np, r, volumeMesher=backend)
@@ -86,12 +87,17 @@ class sphereSTL(ParallelCaseTest):
     pass
 
 
-# r = 1 on 2 ranks, r = 2 on 2, 3 and 4: r = 2 runs every stage r = 1
-# does
+# r = 1 on 2 ranks, r = 2 on 2, 3 and 4 (r = 2 runs every stage r = 1
+# does), each with hxt, and with Netgen but on 3 ranks: the ranks' count
+# changes nothing in the mesher's partition, only in the matching between
+# them, which hxt's tests at 3 ranks check (8.5 s a test of CI's time)
 for cls in (sphere, shaft, sphereSTL):
     for np, r in ((2, 1), (2, 2), (3, 2), (4, 2)):
         for backend in ("netgen", "hxt"):
-            t = make_cycle_test(cls.__name__, np, r, backend)
+            if backend == "netgen" and np == 3:
+                continue
+            cycle = backend == "netgen" and (r == 1 or np == 4)
+            t = make_cycle_test(cls.__name__, np, r, backend, cycle)
             setattr(cls, t.__name__, t)
 
 
