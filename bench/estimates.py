@@ -67,8 +67,8 @@ CASES = [
     ("sphereInBox.stl hxt r2 P2, wake", "sphereSTL", "sphereInBox.stl", 2,
      {"maxCellSize": 1, "refinementLevels": 2, "volumeMesher": "hxt"}, {}, WAKE),
     ("shaft hxt r3 P2", "shaft", None, 2, {"refinementLevels": 3, "volumeMesher": "hxt"}, {}, None),
-    ("pipe netgen r1 P2 (12 layers)", "pipe", None, 2, {"volumeMesher": "netgen"}, {}, None),
-    ("pipe hxt r1 P2 (12 layers)", "pipe", None, 2, {"volumeMesher": "hxt"}, {}, None),
+    ("pipe netgen r1 P2 (8 layers)", "pipe", None, 2, {"volumeMesher": "netgen"}, {}, None),
+    ("pipe hxt r1 P2 (8 layers)", "pipe", None, 2, {"volumeMesher": "hxt"}, {}, None),
     # OpenFOAM's bullet in a box (write_bullet_in_box), at two sizes, with
     # and without 5 layers on the body
     ("bullet hxt 0.02 r1 P2", "sphereSTL", BULLET, 2,

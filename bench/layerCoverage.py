@@ -53,7 +53,7 @@ def bullet():
 
 
 CASES = (("sphereDrag, 5 layers (hxt)", sphere_drag),
-         ("pipe, 12 layers (netgen, as shipped)", lambda: fc.TutorialCase("pipe")),
+         ("pipe, 8 layers (netgen, as shipped)", lambda: fc.TutorialCase("pipe")),
          ("bullet in a box, 5 layers (hxt)", bullet))
 
 

@@ -6,7 +6,7 @@ field Netgen's follow, within 15 % in every band).
 
 - sphereDrag as shipped (distance from the ball of radius 0.5; its 3
   prism layers fill the first 0.015, both meshers alike);
-- the pipe as shipped, 12 prism layers on its wall (distance from the
+- the pipe as shipped, 8 prism layers on its wall (distance from the
   wall of radius 0.5: the layers fill the first 0.29, both meshers alike).
 
 Each mesh: pmshFoam on 2 ranks, its cells and wall time, checkMesh's
