@@ -431,8 +431,10 @@ class bodyInBox(CaseTest):
         0.01, r = 2, hxt, 2 ranks (#37 case 1): partition 1's refined
         surface overlapped itself and every volume mesher refused it
         (four attempts, 49 s, then the run stopped). Now 4.0M cells in
-        about 35 s, every partition meshed by hxt at its first attempt,
-        checkMesh -parallel Mesh OK."""
+        about 35 s, every partition meshed by hxt at its first attempt
+        (each rank's volume mesh checked by pmshFoam's volume contract;
+        checkMesh -parallel, Mesh OK when this test was written, is left
+        out for 10 s of CI's time)."""
         c = self.body_case("sphereInBox.stl")
         write_bullet_in_box(os.path.join(c.dir, "constant", "geometry", "bulletInBox.stl"))
         c.set_entry("system/pmshDict", "geometry", '"constant/geometry/bulletInBox.stl"')
@@ -444,8 +446,7 @@ class bodyInBox(CaseTest):
         s = c.summary()
         self.assertEqual(s["volumeMesherPerRank"], ["hxt", "hxt"])
         self.assertEqual(s["volumeAttemptsPerRank"], [1, 1])
-        text = c.check_mesh(np=2)
-        self.assertGreater(cells_in_checkmesh_log(text), 3000000)
+        self.assertGreater(s["fineCells"], 3000000)
 
     def coarse(self, geometry, **entries):
         """Stage 1 alone (r = 0) on geometry: (coarse cells, log)."""

@@ -126,7 +126,8 @@ class parallelRun(ParallelCaseTest):
         serial = self.case("sphere", refinementLevels=2, volumeMesher=backend)
         serial.run("pmshFoam")
         nSerial = cells_in_checkmesh_log(serial.check_mesh())
-        for np in (2, 4):
+        # On 4 ranks: more interface than on 2, so further from serial
+        for np in (4,):
             _, n = self.mesh_parallel("sphere", np, 2, volumeMesher=backend)
             self.assertLess(abs(n - nSerial) / nSerial, 0.15,
                             "%s: %d cells on %d ranks vs %d serial" % (backend, n, np, nSerial))
