@@ -190,6 +190,77 @@ void flipDegenerateTriangles
 }
 
 
+//- Two triangles sharing an edge are coplanar when their normals are
+//  within 0.1 degrees: a side of the domain box, a plinth's wall, a CAD
+//  body's flat face. A curved surface's triangles at the coarse sizes are
+//  degrees apart, and are left as the remesher made them.
+constexpr double coplanarCos = 0.9999985;   // cos(0.1 degrees)
+
+//- Lawson's Delaunay flips on the flat parts of one region: the edge
+//  between two coplanar triangles is flipped where the angles opposite it
+//  add up to more than 180 degrees (and 0.06 more, so that points on one
+//  circle do not flip back and forth). The remesher keeps the border of
+//  every size it meshes at, and leaves obtuse triangles along those
+//  borders; the side faces of a prism layer on them are as far from
+//  orthogonal as the triangles are obtuse (OpenFOAM's motorBike with a
+//  layer on its floor: 155 faces above 70 degrees, all on the floor).
+template<class PatchMap, class EdgeMap>
+void delaunayFlipFlatParts
+(
+    Mesh& m,
+    const PatchMap& patch,
+    const std::vector<label>& patchRegion,
+    const EdgeMap& constrained
+)
+{
+    const double delaunayTolerance = 1e-3;
+    const auto angle = [](const vector3& u, const vector3& v)
+    {
+        return std::atan2(std::sqrt(magSqr(cross(u, v))), dot(u, v));
+    };
+    for (int sweep = 0; sweep < maxFlipSweeps; ++sweep)
+    {
+        label nFlipped = 0;
+        for (const auto e : m.edges())
+        {
+            if (constrained[e] || m.is_border(e))
+            {
+                continue;
+            }
+            const auto h = m.halfedge(e);
+            const auto o = m.opposite(h);
+            if (patchRegion[patch[m.face(h)]] != patchRegion[patch[m.face(o)]])
+            {
+                continue;
+            }
+            const auto apex = m.target(m.next(h));
+            const auto otherApex = m.target(m.next(o));
+            const point3 a = toPoint3(m.point(m.source(h)));
+            const point3 b = toPoint3(m.point(m.target(h)));
+            const point3 c = toPoint3(m.point(apex));
+            const point3 d = toPoint3(m.point(otherApex));
+            const vector3 n1 = cross(b - a, c - a);
+            const vector3 n2 = cross(a - b, d - b);
+            if
+            (
+                dot(n1, n2) < coplanarCos*std::sqrt(magSqr(n1)*magSqr(n2))
+             || angle(a - c, b - c) + angle(a - d, b - d) <= M_PI + delaunayTolerance
+             || CGAL::halfedge(apex, otherApex, m).second
+            )
+            {
+                continue;
+            }
+            CGAL::Euler::flip_edge(h, m);
+            ++nFlipped;
+        }
+        if (nFlipped == 0)
+        {
+            break;
+        }
+    }
+}
+
+
 //- One shell's triangles remeshed at their sizes, from the input itself.
 //  Each (region, size) pair is a patch whose borders CGAL keeps, so every
 //  coarse triangle knows its region and size. One CGAL mesh a shell: CGAL
@@ -273,6 +344,7 @@ remeshedShell remeshShell
         );
     }
     flipDegenerateTriangles(m, patch, patchRegion, constrained);
+    delaunayFlipFlatParts(m, patch, patchRegion, constrained);
     m.collect_garbage();
 
     remeshedShell r;
