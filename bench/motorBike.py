@@ -118,10 +118,12 @@ def pmsh_solve(case, ranks):
 
 
 def pmsh_coverage(case):
-    """The share of the bike's wall faces with all their layers"""
+    """The share of the bike's wall faces with all their layers (its parts'
+    patches, "name%n" as the OBJ's groups; not the floor's)"""
     layers = fc.summary(case).get("layers") or {}
-    faces = sum(p["faces"] for p in layers.values())
-    return sum(p["faces"] * p["coverage"] for p in layers.values()) / faces if faces else None
+    bike = [p for name, p in layers.items() if "%" in name]
+    faces = sum(p["faces"] for p in bike)
+    return sum(p["faces"] * p["coverage"] for p in bike) / faces if faces else None
 
 
 def measure(name, ranks, work, build, solve, coverage):
