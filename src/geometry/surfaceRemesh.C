@@ -95,8 +95,46 @@ constexpr double flatTriangle = 1e-6;
 //  at up to 89.7 degrees from orthogonal.
 constexpr double capCos = -0.9396926;   // cos(160 degrees)
 
-//- Sweeps of flipDegenerateTriangles at most
+//- Sweeps of a flip pass at most
 constexpr int maxFlipSweeps = 10;
+
+
+//- flipSweep() (one pass over the mesh, returning how many edges it
+//  flipped) again until it flips none, at most maxFlipSweeps times: a flip
+//  can leave a triangle next door to flip
+template<class FlipSweep>
+void sweepUntilNoneFlips(const FlipSweep& flipSweep)
+{
+    for (int sweep = 0; sweep < maxFlipSweeps; ++sweep)
+    {
+        if (flipSweep() == 0)
+        {
+            break;
+        }
+    }
+}
+
+
+//- Whether the flips may flip the edge of h: it lies between two
+//  triangles of one region (of one size or two: the border of a
+//  refinement region on the floor is no edge of the geometry), it is no
+//  feature, and the edge the flip makes is not there already
+template<class PatchMap, class EdgeMap>
+bool flippableWithinRegion
+(
+    const Mesh& m,
+    const Mesh::Halfedge_index h,
+    const PatchMap& patch,
+    const std::vector<label>& patchRegion,
+    const EdgeMap& constrained
+)
+{
+    const auto o = m.opposite(h);
+    return !m.is_border(m.edge(h))
+        && patchRegion[patch[m.face(h)]] == patchRegion[patch[m.face(o)]]
+        && !constrained[m.edge(h)]
+        && !CGAL::halfedge(m.target(m.next(h)), m.target(m.next(o)), m).second;
+}
 
 
 //- Whether flipping edge (a, b) of triangles (a, b, c) and (b, a, d)
@@ -133,9 +171,8 @@ void flipDegenerateTriangles
     const EdgeMap& constrained
 )
 {
-    // A flip can leave a cap next door: sweep until none flips (a cap's
-    // flip makes its pair's worse triangle better, so this ends)
-    for (int sweep = 0; sweep < maxFlipSweeps; ++sweep)
+    // A cap's flip makes its pair's worse triangle better, so the sweeps end
+    sweepUntilNoneFlips([&]()
     {
         label nFlipped = 0;
         for (const Face f : m.faces())
@@ -165,16 +202,10 @@ void flipDegenerateTriangles
             {
                 continue;
             }
-            const Face other = m.face(m.opposite(longest));
-            const auto apex = m.target(m.next(longest));
             const auto otherApex = m.target(m.next(m.opposite(longest)));
             if
             (
-                other != Mesh::null_face()
-             && patchRegion[patch[other]] == patchRegion[patch[f]]
-             && !constrained[m.edge(longest)]
-                // the new edge must not exist already
-             && !CGAL::halfedge(apex, otherApex, m).second
+                flippableWithinRegion(m, longest, patch, patchRegion, constrained)
              && (flat || flipImproves(a, b, c, toPoint3(m.point(otherApex))))
             )
             {
@@ -182,11 +213,8 @@ void flipDegenerateTriangles
                 ++nFlipped;
             }
         }
-        if (nFlipped == 0)
-        {
-            break;
-        }
-    }
+        return nFlipped;
+    });
 }
 
 
@@ -218,46 +246,34 @@ void delaunayFlipFlatParts
     {
         return std::atan2(std::sqrt(magSqr(cross(u, v))), dot(u, v));
     };
-    for (int sweep = 0; sweep < maxFlipSweeps; ++sweep)
+    sweepUntilNoneFlips([&]()
     {
         label nFlipped = 0;
         for (const auto e : m.edges())
         {
-            if (constrained[e] || m.is_border(e))
-            {
-                continue;
-            }
             const auto h = m.halfedge(e);
-            const auto o = m.opposite(h);
-            if (patchRegion[patch[m.face(h)]] != patchRegion[patch[m.face(o)]])
+            if (!flippableWithinRegion(m, h, patch, patchRegion, constrained))
             {
                 continue;
             }
-            const auto apex = m.target(m.next(h));
-            const auto otherApex = m.target(m.next(o));
             const point3 a = toPoint3(m.point(m.source(h)));
             const point3 b = toPoint3(m.point(m.target(h)));
-            const point3 c = toPoint3(m.point(apex));
-            const point3 d = toPoint3(m.point(otherApex));
+            const point3 c = toPoint3(m.point(m.target(m.next(h))));
+            const point3 d = toPoint3(m.point(m.target(m.next(m.opposite(h)))));
             const vector3 n1 = cross(b - a, c - a);
             const vector3 n2 = cross(a - b, d - b);
             if
             (
-                dot(n1, n2) < coplanarCos*std::sqrt(magSqr(n1)*magSqr(n2))
-             || angle(a - c, b - c) + angle(a - d, b - d) <= M_PI + delaunayTolerance
-             || CGAL::halfedge(apex, otherApex, m).second
+                dot(n1, n2) >= coplanarCos*std::sqrt(magSqr(n1)*magSqr(n2))
+             && angle(a - c, b - c) + angle(a - d, b - d) > M_PI + delaunayTolerance
             )
             {
-                continue;
+                CGAL::Euler::flip_edge(h, m);
+                ++nFlipped;
             }
-            CGAL::Euler::flip_edge(h, m);
-            ++nFlipped;
         }
-        if (nFlipped == 0)
-        {
-            break;
-        }
-    }
+        return nFlipped;
+    });
 }
 
 
