@@ -52,6 +52,13 @@ pmsh::CoarseMesh pmsh::stlGeometry::remeshedSurface
             << parameters.curvatureRefinement << ", minCellSize "
             << parameters.minCellSize << ")";
     }
+    if (remeshed.nBordersHeld)
+    {
+        Info
+            << ", " << remeshed.nBordersHeld << " size(s) remeshed again with"
+            << " their borders held (CGAL's remesher failed on exactly"
+            << " collinear points there)";
+    }
     Info<< '\n';
 
     CoarseMesh coarse;

@@ -17,6 +17,7 @@
 #include <iterator>
 #include <map>
 #include <numeric>
+#include <stdexcept>
 
 namespace pmsh
 {
@@ -80,6 +81,7 @@ struct remeshedShell
     std::vector<triVerts> triangles;
     std::vector<label> region;
     std::vector<double> size;
+    label nBordersHeld = 0;         //!< sizes remeshed again, border held
 };
 
 
@@ -277,6 +279,93 @@ void delaunayFlipFlatParts
 }
 
 
+//- The faces of the patches of size h remeshed at h; the others, and the
+//  feature edges, kept. Whether the border with the other sizes had to be
+//  held: CGAL 5.5's remesher, when a collapse leaves a face whose points
+//  are exactly on a line, flips that face's longest edge even where it is
+//  the border of the faces it remeshes (fix_degenerate_faces checks no
+//  status), so a face outside them gets an edge inside; check_normals
+//  then asks for that face's patch, which it never listed, and throws
+//  std::out_of_range ("map::at"). Exactly collinear points come from the
+//  domain box's sides, whose edges along the axes split into points on
+//  one line: OpenFOAM's motorBike with the tutorial's refinementBox
+//  (0.0625 fine) stopped so on its floor. The same size is then remeshed
+//  again from before, with the points on its border with other sizes
+//  held, so that no collapse reaches that border.
+bool remeshAtSize
+(
+    Mesh& m,
+    const double h,
+    const std::vector<double>& patchSize,
+    Mesh::Property_map<Face, std::size_t>& patch,
+    Mesh::Property_map<Mesh::Edge_index, bool>& constrained
+)
+{
+    // held: the points remeshing may not move (none at first)
+    const auto remesh = [&](const Mesh::Property_map<Mesh::Vertex_index, bool>& held)
+    {
+        std::vector<Face> faces;
+        for (const Face f : m.faces())
+        {
+            if (patchSize[patch[f]] == h) faces.push_back(f);
+        }
+        PMP::isotropic_remeshing
+        (
+            faces, h, m,
+            PMP::parameters::number_of_iterations(remeshIterations)
+           .edge_is_constrained_map(constrained)
+           .vertex_is_constrained_map(held)
+           .face_patch_map(patch)
+        );
+    };
+    const Mesh before(m);
+    auto held = m.add_property_map<Mesh::Vertex_index, bool>("v:held", false).first;
+    try
+    {
+        remesh(held);
+        m.remove_property_map(held);
+        return false;
+    }
+    catch (const std::out_of_range&)
+    {}
+
+    // A copy's property maps are its own
+    m = before;
+    patch = m.property_map<Face, std::size_t>("f:patch").first;
+    constrained = m.property_map<Mesh::Edge_index, bool>("e:feature").first;
+    held = m.add_property_map<Mesh::Vertex_index, bool>("v:held", false).first;
+    for (const auto e : m.edges())
+    {
+        const bool inside0 = patchSize[patch[m.face(m.halfedge(e, 0))]] == h;
+        const bool inside1 = patchSize[patch[m.face(m.halfedge(e, 1))]] == h;
+        if (inside0 != inside1)
+        {
+            held[m.vertex(e, 0)] = true;
+            held[m.vertex(e, 1)] = true;
+        }
+    }
+    try
+    {
+        remesh(held);
+    }
+    catch (const std::out_of_range&)
+    {
+        throw FatalError
+        (
+            msg()
+                << "CGAL's isotropic remeshing failed on the coarse surface's"
+                << " triangles of size " << h << ", with their border held"
+                << " as well (a face whose points are exactly on a line,"
+                << " by the border of that size).\nIn system/pmshDict change"
+                << " that maxCellSize a little, or set coarseSurface netgen",
+            "pmsh::remeshSurface"
+        );
+    }
+    m.remove_property_map(held);
+    return true;
+}
+
+
 //- One shell's triangles remeshed at their sizes, from the input itself.
 //  Each (region, size) pair is a patch whose borders CGAL keeps, so every
 //  coarse triangle knows its region and size. One CGAL mesh a shell: CGAL
@@ -341,23 +430,10 @@ remeshedShell remeshShell
     std::vector<double> sizes(patchSize);
     std::sort(sizes.begin(), sizes.end());
     sizes.erase(std::unique(sizes.begin(), sizes.end()), sizes.end());
+    label nBordersHeld = 0;
     for (const double h : sizes)
     {
-        std::vector<Face> faces;
-        for (const Face f : m.faces())
-        {
-            if (patchSize[patch[f]] == h)
-            {
-                faces.push_back(f);
-            }
-        }
-        PMP::isotropic_remeshing
-        (
-            faces, h, m,
-            PMP::parameters::number_of_iterations(remeshIterations)
-           .edge_is_constrained_map(constrained)
-           .face_patch_map(patch)
-        );
+        nBordersHeld += remeshAtSize(m, h, patchSize, patch, constrained);
     }
     flipDegenerateTriangles(m, patch, patchRegion, constrained);
     delaunayFlipFlatParts(m, patch, patchRegion, constrained);
@@ -374,6 +450,7 @@ remeshedShell remeshShell
         r.region.push_back(patchRegion[patch[f]]);
         r.size.push_back(patchSize[patch[f]]);
     }
+    r.nBordersHeld = nBordersHeld;
     return r;
 }
 
@@ -444,6 +521,7 @@ pmsh::remeshedTriangulation pmsh::remeshSurface
             }
             result.region.insert(result.region.end(), r.region.begin(), r.region.end());
             coarseSize.insert(coarseSize.end(), r.size.begin(), r.size.end());
+            result.nBordersHeld += r.nBordersHeld;
         }
         result.nRounds = round;
 

@@ -5,6 +5,7 @@
 
 #include "Geometry.H"
 #include "stlGeometry.H"
+#include "domainBox.H"
 #include "testMeshers.H"
 #include "testUtilities.H"
 #include "surfaceRemesh.H"
@@ -15,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <map>
 
 using namespace pmsh;
@@ -252,4 +254,55 @@ TEST(surfaceRemesh, aThinShellIsRefinedWhereItsSidesWouldCross)
     // Away from the crossings the size stays: far fewer triangles than
     // the input's
     EXPECT_LT(r.triangles.size(), s.triangles.size()/4);
+}
+
+
+// OpenFOAM's motorBike (Debian's openfoam-examples, which the project's
+// set-up installs) wrapped in its tutorial's box, on plinths, with its
+// tutorial's refinementBox (0.0625 fine): on the floor, CGAL 5.5's
+// remesher flipped an edge on the border of the size it remeshed, by a
+// face of exactly collinear points, and threw "map::at" (surfaceRemesh.C,
+// remeshAtSize). That size is remeshed again with its border held: the
+// coarse surface is closed and keeps every side and the bike.
+TEST(surfaceRemesh, theMotorBikesFloorIsRemeshedAtItsTutorialsRefinementBox)
+{
+    const std::string obj =
+        "/usr/share/doc/openfoam-examples/examples/resources/geometry/motorBike.obj.gz";
+    ASSERT_TRUE(std::ifstream(obj).good()) << obj << " (Debian's openfoam-examples)";
+    domainBox box;
+    box.given = true;
+    box.min = {-5, -4, 0};
+    box.max = {15, 4, 8};
+    box.sideNames = {"inlet", "outlet", "frontAndBack", "frontAndBack", "lowerWall", "upperWall"};
+    box.wrapSize = 0.03125;
+    box.wrapOffset = 0.03125/2;
+    box.plinthHeight = 0.03;
+    auto g = Geometry::New({obj}, box);
+
+    coarseMeshParameters p(1.0);
+    p.coarseSurface = "remesh";
+    p.curvatureRefinement = 3;
+    p.minCellSize = 1.0/8;
+    p.patchMaxCellSize = [](const std::string& patch)
+    {
+        return patch.find('%') != std::string::npos ? 0.0625 : 0.0;
+    };
+    sizeRegion refinementBox;
+    refinementBox.name = "refinementBox";
+    refinementBox.min = {-1, -0.7, 0};
+    refinementBox.max = {8, 0.7, 2.5};
+    refinementBox.size = 0.125;
+    p.regions.push_back(refinementBox);
+    const CoarseMesh m = g->coarseSurface(p);
+
+    EXPECT_TRUE(closedAndConsistent(triangles(m)));
+    const std::vector<std::string> names = patchNames(m);
+    for (const std::string side : {"inlet", "outlet", "frontAndBack", "lowerWall", "upperWall"})
+    {
+        EXPECT_NE(std::find(names.begin(), names.end(), side), names.end()) << side;
+    }
+    EXPECT_GT(std::count_if(names.begin(), names.end(), [](const std::string& n)
+    {
+        return n.find('%') != std::string::npos;
+    }), 20);
 }
