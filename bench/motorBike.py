@@ -12,7 +12,9 @@ its work directory, one after the other on the same machine:
   oversubscribed, so its times do not compare), and on 2 ranks again
   solved as pmshFoam's is, from the uniform fields without potentialFoam;
 - pmshFoam: tutorials/motorBike as its Allrun runs it (pmshFoam -parallel,
-  simpleFoam), on 2 ranks.
+  simpleFoam), on 2 ranks; and the same with the refinement box at the
+  tutorial's level 4 (fine cells of 0.0625 instead of 0.125), at the
+  resolution of snappyHexMesh's mesh there.
 
 All solve with the same schemes, solvers, models and 500 iterations (the
 tutorial's; pmshFoam's case copies them). For each: cells, meshing wall
@@ -44,6 +46,7 @@ RANKS = 2
 # OpenFOAM's Allrun decomposes the motorBike into 6 (decomposeParDict.6)
 TUTORIAL_RANKS = 6
 UNIFORM = "snappyHexMesh, no potentialFoam"
+LEVEL4 = "pmshFoam, refinementBox at level 4"
 
 
 def openfoam_tutorial():
@@ -108,6 +111,23 @@ def snappy_coverage(case):
 
 def pmsh_case(case, ranks):
     shutil.copytree(os.path.join(PROJECT_DIR, "tutorials", "motorBike"), case)
+    os.makedirs(os.path.join(case, "constant", "geometry"), exist_ok=True)
+    shutil.copy(bike_obj(), os.path.join(case, "constant", "geometry"))
+    return ds.run(["pmshFoam"], case, "log.pmshFoam", np=ranks)
+
+
+def pmsh_level4_case(case, ranks):
+    """tutorials/motorBike with its refinementBox's fine cells at 0.0625, the
+    size of the tutorial's level 4 (its blockMesh cells of 1 halved 4 times)"""
+    shutil.copytree(os.path.join(PROJECT_DIR, "tutorials", "motorBike"), case)
+    dict_file = os.path.join(case, "system", "pmshDict")
+    with open(dict_file) as f:
+        text, n = re.subn(r"(refinementBox\s*\{[^}]*maxCellSize\s+)0\.25\b", r"\g<1>0.125",
+                          f.read())
+    if n != 1:
+        raise RuntimeError("no refinementBox of maxCellSize 0.25 in " + dict_file)
+    with open(dict_file, "w") as f:
+        f.write(text)
     os.makedirs(os.path.join(case, "constant", "geometry"), exist_ok=True)
     shutil.copy(bike_obj(), os.path.join(case, "constant", "geometry"))
     return ds.run(["pmshFoam"], case, "log.pmshFoam", np=ranks)
@@ -199,7 +219,11 @@ def main():
     parser.add_argument("--uniform-ranks", type=int, nargs="*", default=[RANKS],
                         help="snappyHexMesh's runs solved from the uniform fields, without"
                         " potentialFoam, as pmshFoam's (default: 2)")
-    parser.add_argument("--no-pmsh", action="store_true", help="snappyHexMesh's runs only")
+    parser.add_argument("--pmsh", nargs="*", choices=["tutorial", "level4"],
+                        default=["tutorial", "level4"],
+                        help="pmshFoam's runs: its tutorial as shipped, and with the"
+                        " refinement box at the tutorial's level 4 (default: both;"
+                        " none: snappyHexMesh's only)")
     parser.add_argument("--merge", action="store_true",
                         help="keep the other rows of an earlier motorbike.json in --out")
     args = parser.parse_args()
@@ -209,8 +233,11 @@ def main():
     rows += [measure(UNIFORM, n, args.work, snappy_case, snappy_solve_from_uniform,
                      snappy_coverage)
              for n in args.uniform_ranks]
-    if not args.no_pmsh:
+    if "tutorial" in args.pmsh:
         rows.append(measure("pmshFoam", RANKS, args.work, pmsh_case, pmsh_solve,
+                            pmsh_coverage))
+    if "level4" in args.pmsh:
+        rows.append(measure(LEVEL4, RANKS, args.work, pmsh_level4_case, pmsh_solve,
                             pmsh_coverage))
     if args.merge and os.path.exists(os.path.join(args.out, "motorbike.json")):
         with open(os.path.join(args.out, "motorbike.json")) as f:
@@ -219,7 +246,7 @@ def main():
             r.setdefault("ranks", RANKS)
         new = {(r["mesher"], r["ranks"]) for r in rows}
         rows = [r for r in earlier if (r["mesher"], r.get("ranks", RANKS)) not in new] + rows
-        order = ["snappyHexMesh", UNIFORM, "pmshFoam"]
+        order = ["snappyHexMesh", UNIFORM, "pmshFoam", LEVEL4]
         rows.sort(key=lambda r: (order.index(r["mesher"]), r.get("ranks", RANKS)))
     write(rows, args.out)
     return 0 if all(r.get("solved") for r in rows) else 1
