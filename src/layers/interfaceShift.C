@@ -27,8 +27,9 @@
   own direction would carry a far wall's normal round the interface).
   Should the risen interface still cross itself where no stack is there
   to thin (thick stacks in a narrow pipe, whose interface is squeezed
-  from all sides), the rounds scale the whole shift down, on every rank
-  alike.
+  from all sides; a groove whose walls lift toward each other), the
+  rounds scale down the shift of the crossing triangles' points, on every
+  rank alike (wallLayers.C, selfCrossingScale).
 
   Every rank that holds a point computes the same bits: a sweep's mean is
   over the point's interface triangles of all ranks (stars.gather), each
@@ -177,7 +178,7 @@ std::vector<vector3> interfaceShift
     const std::vector<bool>& interfaceOnly,
     const std::vector<bool>& promoted,
     const std::vector<vector3>& slidePlanes,
-    double scale
+    const std::vector<double>& scale
 )
 {
     const layerSurface& surface = stars.surface();
@@ -297,7 +298,7 @@ std::vector<vector3> interfaceShift
     {
         if (interfaceOnly[p])
         {
-            u[p] = scale*u[p];
+            u[p] = scale[p]*u[p];
         }
         else if (!slides || magSqr(slidePlanes[p]) == 0)
         {
