@@ -52,6 +52,12 @@ pmsh::CoarseMesh pmsh::stlGeometry::remeshedSurface
             << parameters.curvatureRefinement << ", minCellSize "
             << parameters.minCellSize << ")";
     }
+    if (remeshed.nGradedBands)
+    {
+        Info
+            << ", " << remeshed.nGradedBands << " band(s) graded where a size"
+            << " met a coarser one more than twice its own";
+    }
     if (remeshed.nBordersHeld)
     {
         Info

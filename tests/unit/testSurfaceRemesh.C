@@ -50,6 +50,29 @@ std::vector<triVerts> triangles(const CoarseMesh& m)
     return t;
 }
 
+//- Largest angle of each boundary triangle of patch `name`, in degrees.
+std::vector<double> largestAngles(const CoarseMesh& m, const std::string& name)
+{
+    std::vector<double> angles;
+    for (const coarseBoundaryFace& f : m.boundary)
+    {
+        if (m.patches[f.patch].name != name) continue;
+        double largest = 0;
+        for (int k = 0; k < 3; ++k)
+        {
+            const vector3 u = m.points[f.v[(k + 1) % 3]] - m.points[f.v[k]];
+            const vector3 v = m.points[f.v[(k + 2) % 3]] - m.points[f.v[k]];
+            largest = std::max
+            (
+                largest,
+                std::atan2(std::sqrt(magSqr(cross(u, v))), dot(u, v))*180/M_PI
+            );
+        }
+        angles.push_back(largest);
+    }
+    return angles;
+}
+
 } // End anonymous namespace
 
 
@@ -263,7 +286,9 @@ TEST(surfaceRemesh, aThinShellIsRefinedWhereItsSidesWouldCross)
 // remesher flipped an edge on the border of the size it remeshed, by a
 // face of exactly collinear points, and threw "map::at" (surfaceRemesh.C,
 // remeshAtSize). That size is remeshed again with its border held: the
-// coarse surface is closed and keeps every side and the bike.
+// coarse surface is closed and keeps every side and the bike. And the
+// floor is graded from the box's border (0.125 inside, 1 outside), with
+// no triangle of more than 140 degrees along it.
 TEST(surfaceRemesh, theMotorBikesFloorIsRemeshedAtItsTutorialsRefinementBox)
 {
     const std::string obj =
@@ -305,4 +330,12 @@ TEST(surfaceRemesh, theMotorBikesFloorIsRemeshedAtItsTutorialsRefinementBox)
     {
         return n.find('%') != std::string::npos;
     }), 20);
+
+    // The floor graded from the box's border (gradeSizeBorders): before,
+    // 48 of its triangles had an angle above 140 degrees along it, and the
+    // side faces of the floor's prisms on them reached 86 degrees from
+    // orthogonal
+    const std::vector<double> floor = largestAngles(m, "lowerWall");
+    EXPECT_GT(floor.size(), 1000u);
+    EXPECT_EQ(std::count_if(floor.begin(), floor.end(), [](double a) { return a > 140; }), 0);
 }
