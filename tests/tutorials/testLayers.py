@@ -33,6 +33,24 @@ tlo fluid;
 """
 
 
+
+def bullet_with_thick_layers_case(test):
+    """OpenFOAM's bullet.stl in a box (maxCellSize 0.02, r = 1, hxt), 5
+    layers on the body 0.0001 thick at the wall growing by 1.2: thick
+    against the body's fine surface (0.002), in a case of `test`'s"""
+    helper = bodyInBox(methodName="test_stlNp2")
+    helper.cases = test.cases
+    c = helper.body_case("sphereInBox.stl")
+    write_bullet_in_box(os.path.join(c.dir, "constant", "geometry", "bulletInBox.stl"))
+    c.set_entry("system/pmshDict", "geometry", '"constant/geometry/bulletInBox.stl"')
+    c.set_entry("system/pmshDict", "maxCellSize", 0.02)
+    c.set_entry("system/pmshDict", "volumeMesher", "hxt")
+    set_patches(c, {"inlet": "type patch;", "outlet": "type patch;",
+                    "sides": "type patch;",
+                    "body": "type wall; maxCellSize 0.002; layers 5;"
+                            " firstLayerThickness 0.0001; expansionRatio 1.2;"})
+    return c
+
 def set_patches(case, patches):
     """Replace system/pmshDict's patches sub-dictionary."""
     path = os.path.join(case.dir, "system", "pmshDict")
@@ -177,17 +195,7 @@ class layers(CaseTest):
         thinned is in postProcessing/pmshFoam/thinnedLayers.vtk: points on
         the body, some for valid prisms and tops (the grooves), some for
         the partition interfaces (8,593 and 836 of 9,429)."""
-        helper = bodyInBox(methodName="test_stlNp2")
-        helper.cases = self.cases
-        c = helper.body_case("sphereInBox.stl")
-        write_bullet_in_box(os.path.join(c.dir, "constant", "geometry", "bulletInBox.stl"))
-        c.set_entry("system/pmshDict", "geometry", '"constant/geometry/bulletInBox.stl"')
-        c.set_entry("system/pmshDict", "maxCellSize", 0.02)
-        c.set_entry("system/pmshDict", "volumeMesher", "hxt")
-        set_patches(c, {"inlet": "type patch;", "outlet": "type patch;",
-                        "sides": "type patch;",
-                        "body": "type wall; maxCellSize 0.002; layers 5;"
-                                " firstLayerThickness 0.0001; expansionRatio 1.2;"})
+        c = bullet_with_thick_layers_case(self)
         _, log = c.run("pmshFoam", np=4)
         self.assertNotIn("earlier attempts", log)
         s = c.summary()
