@@ -14,14 +14,12 @@ import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 from foamCase import CaseTest, PolyMeshFiles, read_check_mesh  # noqa: E402
-from testLayers import bullet_with_thick_layers_case, set_patches  # noqa: E402
+from testLayers import set_patches  # noqa: E402
 
 # The sphere at r = 2 expects about 82k fine cells: 5 pieces of 20k
 PIECE_CELLS = 20000
 # With 3 layers the tets are fewer (the prisms are not the mesher's)
 LAYERED_PIECE_CELLS = 16000
-# The bullet with 5 layers expects about 320k tets: 6 pieces
-BULLET_PIECE_CELLS = 60000
 
 
 def global_cells(case_dir):
@@ -102,27 +100,6 @@ class pieces(CaseTest):
             meshes[np] = global_cells(c.dir)
             result = read_check_mesh(c.check_mesh(np))
             self.assertEqual(result["prisms"], s["prisms"])
-        self.assertEqual(meshes[2], meshes[1], "2 ranks gave another mesh than 1")
-        self.assertEqual(meshes[4], meshes[1], "4 ranks gave another mesh than 1")
-
-    def test_bulletsThickStacksInPiecesAreTheSameAtOneTwoAndFourRanks(self):
-        """OpenFOAM's bullet with 5 thick layers: where a partition
-        interface cannot rise as far as the stacks, they thin, so meshed one
-        call a rank the layers differ between ranks (67,110 of its ~330k
-        prisms between 1 and 2 ranks, bench/results/layer-coverage.md). In
-        pieces the interfaces are the faces between pieces, which do not
-        depend on the ranks: the prisms, and the whole mesh, are the same at
-        1, 2 and 4 ranks, with at least 99 % of the body's faces layered"""
-        meshes = {}
-        for np in (1, 2, 4):
-            c = bullet_with_thick_layers_case(self)
-            c.set_entry("system/pmshDict", "maxPieceCells", BULLET_PIECE_CELLS)
-            c.write_format("binary")
-            c.run("pmshFoam", np=np)
-            self.assert_meshed_in_pieces(c, np, BULLET_PIECE_CELLS)
-            s = c.summary()
-            self.assertGreaterEqual(s["layers"]["body"]["coverage"], 0.99, s["layers"])
-            meshes[np] = global_cells(c.dir)
         self.assertEqual(meshes[2], meshes[1], "2 ranks gave another mesh than 1")
         self.assertEqual(meshes[4], meshes[1], "4 ranks gave another mesh than 1")
 
