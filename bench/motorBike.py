@@ -206,8 +206,22 @@ def write(rows, out):
             fmt(r.get("solverSeconds"), "%.0f"),
             fmt(r.get("Cd"), "%.3f") if r.get("solved") else "diverged",
             fmt(r.get("Cl"), "%.3f") if r.get("solved") else "-"))
-    with open(os.path.join(out, "motorbike.md"), "w") as f:
-        f.write("\n".join(lines) + "\n")
+    md = os.path.join(out, "motorbike.md")
+    findings = written_sections(md)
+    with open(md, "w") as f:
+        f.write("\n".join(lines) + "\n" + findings)
+
+
+def written_sections(md):
+    """The sections written by hand below the table of an earlier
+    motorbike.md (its findings), kept when the table is made again"""
+    try:
+        with open(md) as f:
+            text = f.read()
+    except FileNotFoundError:
+        return ""
+    start = text.find("\n## ")
+    return text[start:] if start >= 0 else ""
 
 
 def main():
