@@ -175,15 +175,16 @@ bool segmentCrossesTriangle
 }
 
 
-std::vector<label> crossingTriangles
+std::vector<std::pair<label, label>> crossingPairs
 (
     const std::vector<point3>& points,
     const std::vector<triVerts>& triangles,
     const std::vector<bool>& tested,
-    const bool alsoFolds
+    const bool alsoFolds,
+    const std::vector<label>& group
 )
 {
-    std::vector<label> crossing(triangles.size(), 0);
+    std::vector<std::pair<label, label>> pairs;
     const triangleGrid grid(points, triangles, gridCell(points, triangles));
     for (label t = 0; t < label(triangles.size()); ++t)
     {
@@ -191,9 +192,12 @@ std::vector<label> crossingTriangles
         const box3 bt = boxOf(points, triangles[t]);
         grid.near(bt, [&](label u)
         {
+            // A pair of tested triangles is met twice: kept once
             if
             (
                 u == t
+             || (tested[u] && u < t)
+             || (!group.empty() && group[u] != group[t])
              || !bt.overlaps(boxOf(points, triangles[u]))
              || !trianglesOverlap
                 (
@@ -204,13 +208,32 @@ std::vector<label> crossingTriangles
             {
                 return;
             }
-            const auto mark = [](label& c, label other)
-            {
-                c = c == 0 ? other + 1 : std::min(c, other + 1);
-            };
-            mark(crossing[t], u);
-            mark(crossing[u], t);
+            pairs.emplace_back(std::min(t, u), std::max(t, u));
         });
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    return pairs;
+}
+
+
+std::vector<label> crossingTriangles
+(
+    const std::vector<point3>& points,
+    const std::vector<triVerts>& triangles,
+    const std::vector<bool>& tested,
+    const bool alsoFolds
+)
+{
+    std::vector<label> crossing(triangles.size(), 0);
+    const auto mark = [](label& c, label other)
+    {
+        c = c == 0 ? other + 1 : std::min(c, other + 1);
+    };
+    for (const auto& [t, u] : crossingPairs(points, triangles, tested, alsoFolds))
+    {
+        mark(crossing[t], u);
+        mark(crossing[u], t);
     }
     return crossing;
 }

@@ -64,6 +64,21 @@ constexpr double minTopQualityShare = 0.5;
 
 
 //- Per layered triangle, per point: the current state of the rounds.
+//- What the lifted surface's triangles cross (layerState::crossings):
+//  every pair, within a piece, and per triangle whether it is in a pair
+//  with an interface triangle and in one without. Kinds, not one triangle
+//  crossed: which one of several a triangle would name depends on the
+//  triangles' order, and so on the ranks.
+struct liftedCrossings
+{
+    std::vector<std::pair<label, label>> pairs;
+    std::vector<bool> withInterface;
+    std::vector<bool> withoutInterface;
+
+    bool crosses(label t) const { return withInterface[t] || withoutInterface[t]; }
+};
+
+
 struct layerState
 {
     const layerStars& stars;
@@ -145,7 +160,7 @@ struct layerState
     //  and the interface has risen (triangleCrossings.H), folds included
     //  as in stage 4's check: a risen interface slides in its own plane
     //  where the stacks are several of its rings tall, and folds there.
-    std::vector<label> crossings() const
+    liftedCrossings crossings() const
     {
         const auto& triangles = stars.surface().triangles;
         std::vector<point3> lifted(points().size());
@@ -162,7 +177,17 @@ struct layerState
                     || (!layers.shift.empty() && magSqr(layers.shift[p]) > 0);
             }
         }
-        return crossingTriangles(lifted, triangles, moved, true);
+        liftedCrossings crossing;
+        crossing.pairs = crossingPairs(lifted, triangles, moved, true, stars.surface().piece);
+        crossing.withInterface.assign(triangles.size(), false);
+        crossing.withoutInterface.assign(triangles.size(), false);
+        for (const auto& [t, u] : crossing.pairs)
+        {
+            auto& kind = stars.isInterface(t) || stars.isInterface(u)
+                ? crossing.withInterface : crossing.withoutInterface;
+            kind[t] = kind[u] = true;
+        }
+        return crossing;
     }
 
     //- Scale down the shift of the points near every triangle that
@@ -171,7 +196,7 @@ struct layerState
     //  Whether any rank found one.
     bool scaleDownSelfCrossings
     (
-        const std::vector<label>& crossing,
+        const liftedCrossings& crossing,
         std::vector<double>& shiftScale
     ) const
     {
@@ -183,11 +208,11 @@ struct layerState
         };
         std::vector<bool> selfCrossing(triangles.size(), false);
         bool found = false;
-        for (label t = 0; t < label(triangles.size()); ++t)
+        for (const auto& [t, u] : crossing.pairs)
         {
-            if (crossing[t] != 0 && !layered(t) && !layered(crossing[t] - 1))
+            if (!layered(t) && !layered(u))
             {
-                selfCrossing[t] = selfCrossing[crossing[t] - 1] = true;
+                selfCrossing[t] = selfCrossing[u] = true;
                 found = true;
             }
         }
@@ -438,7 +463,7 @@ bool promote
 (
     const layerState& state,
     const std::vector<bool>& interfaceOnly,
-    const std::vector<label>& crossing,
+    const liftedCrossings& crossing,
     std::vector<bool>& promoted
 )
 {
@@ -451,7 +476,7 @@ bool promote
             {
                 return layerStars::none;
             }
-            return crossing[t] != 0 || !state.liftedValid(t) ? -1.0 : layerStars::none;
+            return crossing.crosses(t) || !state.liftedValid(t) ? -1.0 : layerStars::none;
         }
     );
     bool more = false;
@@ -511,12 +536,12 @@ void validityRounds(layerState& state)
         );
         // Tops of stacks through a triangle nearby, mostly an interface
         // closer to the wall than the stack is thick
-        const std::vector<label> crossing = state.crossings();
+        const liftedCrossings crossing = state.crossings();
         auto crossed = [&](label t, label p, bool interface)
         {
-            if (crossing[t] == 0 || layers.nLayers[p] == 0) return layerStars::none;
-            const bool withInterface = stars.isInterface(t) || stars.isInterface(crossing[t] - 1);
-            return withInterface == interface ? shrunk(p) : layerStars::none;
+            if (layers.nLayers[p] == 0) return layerStars::none;
+            const bool kind = interface ? crossing.withInterface[t] : crossing.withoutInterface[t];
+            return kind ? shrunk(p) : layerStars::none;
         };
         const std::vector<double> wallCrossingLimit = stars.minimum
         (

@@ -123,7 +123,7 @@ wallLayers growLayers
     const std::vector<label> region = kernelRegions(surface, comm.rank());
     const layerSurface wall
     {
-        surface.points, surface.ids, surface.triangles, region, specs,
+        surface.points, surface.ids, surface.triangles, region, surface.piece, specs,
         [gap](const point3& p, const vector3& d, double skip) { return (*gap)(p, d, skip); }
     };
     if (comm.parallel())

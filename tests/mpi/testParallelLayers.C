@@ -95,7 +95,7 @@ wallLayers grow
     layerExchange& exchange
 )
 {
-    return growWallLayers({s.points, s.ids, s.triangles, s.region, specs, nullptr}, exchange);
+    return growWallLayers({s.points, s.ids, s.triangles, s.region, s.piece, specs, nullptr}, exchange);
 }
 
 bool sameBits(const void* a, const void* b, std::size_t n)

@@ -36,6 +36,9 @@ namespace
 
 const double pi = 3.14159265358979323846;
 
+//- layerSurface::piece of a part meshed in one piece
+const std::vector<label> onePiece;
+
 //- A closed triangulated surface built face by face: points merged by
 //  their exact coordinates, one barycentric id each, triangles turned to
 //  face a given way (outward from the fluid).
@@ -220,7 +223,7 @@ wallLayers grow
 )
 {
     noLayerExchange serial;
-    layerSurface surface{s.points, s.ids, s.triangles, s.region, specs, nullptr};
+    layerSurface surface{s.points, s.ids, s.triangles, s.region, onePiece, specs, nullptr};
     if (gapLimit) surface.gapAlong = gapAlongTriangles(s.points, s.triangles);
     return growWallLayers(surface, serial);
 }
@@ -504,6 +507,32 @@ TEST(triangleCrossings, findsASegmentThroughATriangleAndNotBesideOrAtItsEnds)
         x, {{0, 1, 2}, {3, 4, 5}, {6, 4, 5}}, {true, false, false}
     );
     EXPECT_EQ(crossing, (std::vector<label>{2, 1, 0}));
+}
+
+
+TEST(triangleCrossings, pairsAreListedOnceAndOnlyWithinAGroup)
+{
+    // Triangle 0 pierced by 1 and by 2; 3 apart. Every crossing pair once,
+    // whichever of its triangles is tested: which triangle a caller's
+    // decision names must not depend on the triangles' order (that is
+    // the ranks'). In groups (the layers' pieces), 2 is in another group
+    // than 0, so that pair is not one: a piece's stacks see only its own
+    // surface, whichever pieces share its rank
+    const point3 p{0, 0, 0}, q{1, 0, 0}, r{0, 1, 0};
+    const std::vector<point3> x
+    {
+        p, q, r,
+        {0.2, 0.2, -1}, {0.3, 0.2, 1}, {0.2, 0.3, 1},
+        {0.1, 0.1, -1}, {0.15, 0.1, 1}, {0.1, 0.15, 1},
+        {5, 5, 5}, {6, 5, 5}, {5, 6, 5}
+    };
+    const std::vector<triVerts> t{{0, 1, 2}, {3, 4, 5}, {6, 7, 8}, {9, 10, 11}};
+    using pairs = std::vector<std::pair<label, label>>;
+    const std::vector<bool> all(t.size(), true);
+    EXPECT_EQ(crossingPairs(x, t, all, true), (pairs{{0, 1}, {0, 2}}));
+    EXPECT_EQ(crossingPairs(x, t, {false, true, true, false}, true), (pairs{{0, 1}, {0, 2}}));
+    EXPECT_EQ(crossingPairs(x, t, all, true, {7, 7, 8, 7}), (pairs{{0, 1}}));
+    EXPECT_EQ(crossingTriangles(x, t, all), (std::vector<label>{2, 1, 1, 0}));
 }
 
 
@@ -922,7 +951,7 @@ void growInTwoParts
                 threadExchange::part exchange(board, r);
                 split[r] = growWallLayers
                 (
-                    {parts[r].points, parts[r].ids, parts[r].triangles, parts[r].region, specs, gap},
+                    {parts[r].points, parts[r].ids, parts[r].triangles, parts[r].region, onePiece, specs, gap},
                     exchange
                 );
             }
@@ -966,7 +995,7 @@ TEST(wallLayers, twoPartsGiveTheOnePartLayersBitForBit)
     noLayerExchange serial;
     const wallLayers one = growWallLayers
     (
-        {whole.points, whole.ids, whole.triangles, whole.region, specs, gap}, serial
+        {whole.points, whole.ids, whole.triangles, whole.region, onePiece, specs, gap}, serial
     );
     ASSERT_GT(one.stats.nGapLimited, 0);
     const layerBits oneBits(whole, one);
