@@ -11,8 +11,9 @@ layerStars::layerStars(const layerSurface& surface, layerExchange& exchange)
     exchange_(exchange),
     pointTriangles_(surface.points.size())
 {
+    const label nTriangles = surface.triangles.size();
     std::vector<bool> shared(surface.points.size(), false);
-    for (label t = 0; t < label(surface.triangles.size()); ++t)
+    for (label t = 0; t < nTriangles; ++t)
     {
         for (const label p : surface.triangles[t])
         {
@@ -27,6 +28,25 @@ layerStars::layerStars(const layerSurface& surface, layerExchange& exchange)
             shared_.push_back(p);
             sharedIds_.push_back(surface.ids[p]);
         }
+    }
+    sharedPoint_ = std::move(shared);
+
+    // Every star in the order of its triangles' keys, once: the
+    // contributions of a point no other rank holds then come in the
+    // canonical order, and gather does not key and sort them at each call
+    // (keyed star by star: keys for the whole surface at once would add
+    // 72 bytes a triangle to the stage's peak)
+    std::vector<std::pair<triangleKey, label>> keyed;
+    for (std::vector<label>& star : pointTriangles_)
+    {
+        keyed.clear();
+        for (const label t : star) keyed.emplace_back(keyOf(t), t);
+        std::stable_sort
+        (
+            keyed.begin(), keyed.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; }
+        );
+        for (std::size_t i = 0; i < star.size(); ++i) star[i] = keyed[i].second;
     }
     const std::vector<double> lowest = minimum
     (
@@ -84,8 +104,11 @@ std::vector<std::vector<keyedContribution>> layerStars::gather
     {
         for (const label t : pointTriangles_[p])
         {
-            keyedContribution c{keyOf(t), 0, {0, 0, 0}};
-            if (f(t, p, c.tag, c.value)) all[p].push_back(c);
+            keyedContribution c{{}, 0, {0, 0, 0}};
+            if (!f(t, p, c.tag, c.value)) continue;
+            // Keys only where other ranks' contributions are merged in
+            if (sharedPoint_[p]) c.key = keyOf(t);
+            all[p].push_back(c);
         }
     }
 
@@ -100,17 +123,36 @@ std::vector<std::vector<keyedContribution>> layerStars::gather
         all[shared_[i]] = std::move(shared[i]);
     }
 
-    // The canonical order: the same sequence of additions on every rank
-    for (auto& list : all)
+    // The canonical order: the same sequence of additions on every rank.
+    // A point's star is in key order (the constructor), so its own
+    // contributions need sorting by tag only; a shared point's are merged
+    // with the other ranks' by key, and by value where two copies of one
+    // interface triangle share a key
+    for (label p = 0; p < nPoints; ++p)
     {
-        std::sort
-        (
-            list.begin(), list.end(),
-            [](const keyedContribution& a, const keyedContribution& b)
-            {
-                return a.tag != b.tag ? a.tag < b.tag : a.key < b.key;
-            }
-        );
+        auto& list = all[p];
+        if (sharedPoint_[p])
+        {
+            std::sort
+            (
+                list.begin(), list.end(),
+                [](const keyedContribution& a, const keyedContribution& b)
+                {
+                    if (a.tag != b.tag) return a.tag < b.tag;
+                    if (a.key != b.key) return a.key < b.key;
+                    return a.value < b.value;
+                }
+            );
+            continue;
+        }
+        const auto byTag = [](const keyedContribution& a, const keyedContribution& b)
+        {
+            return a.tag < b.tag;
+        };
+        if (!std::is_sorted(list.begin(), list.end(), byTag))
+        {
+            std::stable_sort(list.begin(), list.end(), byTag);
+        }
     }
     return all;
 }
