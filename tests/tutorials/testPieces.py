@@ -14,10 +14,12 @@ import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 from foamCase import CaseTest, PolyMeshFiles, read_check_mesh  # noqa: E402
-from testLayers import bullet_with_thick_layers_case  # noqa: E402
+from testLayers import bullet_with_thick_layers_case, set_patches  # noqa: E402
 
 # The sphere at r = 2 expects about 82k fine cells: 5 pieces of 20k
 PIECE_CELLS = 20000
+# With 3 layers the tets are fewer (the prisms are not the mesher's)
+LAYERED_PIECE_CELLS = 16000
 # The bullet with 5 layers expects about 380k tets: 7 pieces
 BULLET_PIECE_CELLS = 60000
 
@@ -81,6 +83,27 @@ class pieces(CaseTest):
         # (so the comparison above can fail)
         whole = [global_cells(self.mesh(np).dir) for np in (1, 2)]
         self.assertNotEqual(whole[0], whole[1])
+
+    def test_layeredMeshInPiecesIsTheSameAtOneTwoAndFourRanks(self):
+        """3 prism layers on the sphere's wall, 5 pieces: the faces between
+        pieces rise over the stacks as the interfaces between ranks do, so
+        the global mesh, prisms and tets, is the same at 1, 2 and 4 ranks,
+        with every wall face layered"""
+        meshes = {}
+        for np in (1, 2, 4):
+            c = self.case("sphere", refinementLevels=2, volumeMesher="hxt",
+                          maxPieceCells=LAYERED_PIECE_CELLS)
+            set_patches(c, {"walls": "type wall; layers 3; firstLayerThickness 0.004;"})
+            c.write_format("binary")
+            c.run("pmshFoam", np=np)
+            self.assertEqual(self.assert_meshed_in_pieces(c, np, LAYERED_PIECE_CELLS), 5)
+            s = c.summary()
+            self.assertEqual(s["layers"]["walls"]["coverage"], 1.0, s["layers"])
+            meshes[np] = global_cells(c.dir)
+            result = read_check_mesh(c.check_mesh(np))
+            self.assertEqual(result["prisms"], s["prisms"])
+        self.assertEqual(meshes[2], meshes[1], "2 ranks gave another mesh than 1")
+        self.assertEqual(meshes[4], meshes[1], "4 ranks gave another mesh than 1")
 
     def test_thickStacksInPiecesAreTheSameAtOneAndTwoRanks(self):
         """OpenFOAM's bullet with 5 layers thick against its surface, in 7
