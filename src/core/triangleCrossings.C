@@ -192,7 +192,9 @@ std::vector<std::pair<label, label>> crossingPairs
         const box3 bt = boxOf(points, triangles[t]);
         grid.near(bt, [&](label u)
         {
-            // A pair of tested triangles is met twice: kept once
+            // A pair of tested triangles is kept from its first triangle
+            // only; the grid meets u once per cell the two share (the
+            // sort and unique below)
             if
             (
                 u == t

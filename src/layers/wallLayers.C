@@ -63,7 +63,6 @@ constexpr double minLiftedAreaShare = 0.25;
 constexpr double minTopQualityShare = 0.5;
 
 
-//- Per layered triangle, per point: the current state of the rounds.
 //- What the lifted surface's triangles cross (layerState::crossings):
 //  every pair, within a piece, and per triangle whether it is in a pair
 //  with an interface triangle and in one without. Kinds, not one triangle
@@ -79,6 +78,7 @@ struct liftedCrossings
 };
 
 
+//- Per layered triangle, per point: the current state of the rounds.
 struct layerState
 {
     const layerStars& stars;
