@@ -14,7 +14,9 @@ its work directory, one after the other on the same machine:
 - pmshFoam: tutorials/motorBike as its Allrun runs it (pmshFoam -parallel,
   simpleFoam), on 2 ranks; and the same with the refinement box at the
   tutorial's level 4 (fine cells of 0.0625 instead of 0.125), at the
-  resolution of snappyHexMesh's mesh there.
+  resolution of snappyHexMesh's mesh there, with hxt's default
+  optimisationSteps 1 and with 2 (from 2 on, Netgen's smoothing moves
+  HXT's interior points: netgenSmoothingFromSteps).
 
 All solve with the same schemes, solvers, models and 500 iterations (the
 tutorial's; pmshFoam's case copies them). For each: cells, meshing wall
@@ -47,6 +49,7 @@ RANKS = 2
 TUTORIAL_RANKS = 6
 UNIFORM = "snappyHexMesh, no potentialFoam"
 LEVEL4 = "pmshFoam, refinementBox at level 4"
+LEVEL4_SMOOTHED = "pmshFoam, refinementBox at level 4, optimisationSteps 2"
 
 
 def openfoam_tutorial():
@@ -116,9 +119,10 @@ def pmsh_case(case, ranks):
     return ds.run(["pmshFoam"], case, "log.pmshFoam", np=ranks)
 
 
-def pmsh_level4_case(case, ranks):
+def pmsh_level4_case(case, ranks, optimisation_steps=None):
     """tutorials/motorBike with its refinementBox's fine cells at 0.0625, the
-    size of the tutorial's level 4 (its blockMesh cells of 1 halved 4 times)"""
+    size of the tutorial's level 4 (its blockMesh cells of 1 halved 4 times),
+    and optimisationSteps if given (hxt's default is 1)"""
     shutil.copytree(os.path.join(PROJECT_DIR, "tutorials", "motorBike"), case)
     dict_file = os.path.join(case, "system", "pmshDict")
     with open(dict_file) as f:
@@ -128,6 +132,8 @@ def pmsh_level4_case(case, ranks):
         raise RuntimeError("no refinementBox of maxCellSize 0.25 in " + dict_file)
     with open(dict_file, "w") as f:
         f.write(text)
+    if optimisation_steps is not None:
+        fc.set_entry(dict_file, "optimisationSteps", optimisation_steps)
     os.makedirs(os.path.join(case, "constant", "geometry"), exist_ok=True)
     shutil.copy(bike_obj(), os.path.join(case, "constant", "geometry"))
     return ds.run(["pmshFoam"], case, "log.pmshFoam", np=ranks)
@@ -233,10 +239,11 @@ def main():
     parser.add_argument("--uniform-ranks", type=int, nargs="*", default=[RANKS],
                         help="snappyHexMesh's runs solved from the uniform fields, without"
                         " potentialFoam, as pmshFoam's (default: 2)")
-    parser.add_argument("--pmsh", nargs="*", choices=["tutorial", "level4"],
-                        default=["tutorial", "level4"],
-                        help="pmshFoam's runs: its tutorial as shipped, and with the"
-                        " refinement box at the tutorial's level 4 (default: both;"
+    parser.add_argument("--pmsh", nargs="*", choices=["tutorial", "level4", "level4smoothed"],
+                        default=["tutorial", "level4", "level4smoothed"],
+                        help="pmshFoam's runs: its tutorial as shipped, with the"
+                        " refinement box at the tutorial's level 4, and that with"
+                        " optimisationSteps 2 (default: all three;"
                         " none: snappyHexMesh's only)")
     parser.add_argument("--merge", action="store_true",
                         help="keep the other rows of an earlier motorbike.json in --out")
@@ -253,6 +260,10 @@ def main():
     if "level4" in args.pmsh:
         rows.append(measure(LEVEL4, RANKS, args.work, pmsh_level4_case, pmsh_solve,
                             pmsh_coverage))
+    if "level4smoothed" in args.pmsh:
+        rows.append(measure(LEVEL4_SMOOTHED, RANKS, args.work,
+                            lambda case, ranks: pmsh_level4_case(case, ranks, 2),
+                            pmsh_solve, pmsh_coverage))
     if args.merge and os.path.exists(os.path.join(args.out, "motorbike.json")):
         with open(os.path.join(args.out, "motorbike.json")) as f:
             earlier = json.load(f)["rows"]
@@ -260,7 +271,7 @@ def main():
             r.setdefault("ranks", RANKS)
         new = {(r["mesher"], r["ranks"]) for r in rows}
         rows = [r for r in earlier if (r["mesher"], r.get("ranks", RANKS)) not in new] + rows
-        order = ["snappyHexMesh", UNIFORM, "pmshFoam", LEVEL4]
+        order = ["snappyHexMesh", UNIFORM, "pmshFoam", LEVEL4, LEVEL4_SMOOTHED]
         rows.sort(key=lambda r: (order.index(r["mesher"]), r.get("ranks", RANKS)))
     write(rows, args.out)
     return 0 if all(r.get("solved") for r in rows) else 1
