@@ -112,10 +112,15 @@ def snappy_coverage(case):
     return sum(int(n) * float(layers) for _, n, layers in rows) / faces if faces else None
 
 
-def pmsh_case(case, ranks):
+def copy_pmsh_tutorial(case):
+    """tutorials/motorBike with the bike's OBJ, as its Allrun copies it"""
     shutil.copytree(os.path.join(PROJECT_DIR, "tutorials", "motorBike"), case)
     os.makedirs(os.path.join(case, "constant", "geometry"), exist_ok=True)
     shutil.copy(bike_obj(), os.path.join(case, "constant", "geometry"))
+
+
+def pmsh_case(case, ranks):
+    copy_pmsh_tutorial(case)
     return ds.run(["pmshFoam"], case, "log.pmshFoam", np=ranks)
 
 
@@ -123,19 +128,11 @@ def pmsh_level4_case(case, ranks, optimisation_steps=None):
     """tutorials/motorBike with its refinementBox's fine cells at 0.0625, the
     size of the tutorial's level 4 (its blockMesh cells of 1 halved 4 times),
     and optimisationSteps if given (hxt's default is 1)"""
-    shutil.copytree(os.path.join(PROJECT_DIR, "tutorials", "motorBike"), case)
+    copy_pmsh_tutorial(case)
     dict_file = os.path.join(case, "system", "pmshDict")
-    with open(dict_file) as f:
-        text, n = re.subn(r"(refinementBox\s*\{[^}]*maxCellSize\s+)0\.25\b", r"\g<1>0.125",
-                          f.read())
-    if n != 1:
-        raise RuntimeError("no refinementBox of maxCellSize 0.25 in " + dict_file)
-    with open(dict_file, "w") as f:
-        f.write(text)
+    fc.substitute(dict_file, *fc.MOTORBIKE_LEVEL4_BOX)
     if optimisation_steps is not None:
         fc.set_entry(dict_file, "optimisationSteps", optimisation_steps)
-    os.makedirs(os.path.join(case, "constant", "geometry"), exist_ok=True)
-    shutil.copy(bike_obj(), os.path.join(case, "constant", "geometry"))
     return ds.run(["pmshFoam"], case, "log.pmshFoam", np=ranks)
 
 

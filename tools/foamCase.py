@@ -99,6 +99,22 @@ def set_entry(path, key, value):
         f.write(text)
 
 
+def substitute(path, pattern, replacement, count=1):
+    """re.sub in a file; the pattern must match `count` times (a tutorial
+    whose text moved on fails here, not silently)."""
+    with open(path) as f:
+        text, n = re.subn(pattern, replacement, f.read())
+    if n != count:
+        raise AssertionError("%r matched %d times in %s, not %d" % (pattern, n, path, count))
+    with open(path, "w") as f:
+        f.write(text)
+
+
+# tutorials/motorBike's refinementBox at its OpenFOAM tutorial's level 4:
+# fine cells of 0.0625 instead of 0.125 (substitute() in its pmshDict)
+MOTORBIKE_LEVEL4_BOX = (r"(refinementBox\s*\{[^}]*maxCellSize\s+)0\.25\b", r"\g<1>0.125")
+
+
 def mpi(ranks, argv):
     """argv on ranks MPI ranks (mpirun ... -parallel), or as it is on one"""
     if ranks > 1:
@@ -258,15 +274,8 @@ class TutorialCase:
         self.set_entry("system/controlDict", "writeFormat", fmt)
 
     def substitute(self, relative, pattern, replacement, count=1):
-        """re.sub in a file of the case; the pattern must match `count`
-        times (a tutorial whose text moved on fails here, not silently)."""
-        path = os.path.join(self.dir, relative)
-        with open(path) as f:
-            text, n = re.subn(pattern, replacement, f.read())
-        if n != count:
-            raise AssertionError("%r matched %d times in %s, not %d" % (pattern, n, path, count))
-        with open(path, "w") as f:
-            f.write(text)
+        """substitute() in a file of the case"""
+        substitute(os.path.join(self.dir, relative), pattern, replacement, count)
 
     # -- running ----------------------------------------------------------
 
