@@ -9,7 +9,7 @@
   order: 1 of 7 partition surfaces at r = 3 and 3 of 96 at r = 2 in the
   tutorials): the flags are cleared before it.
 
-  smoothedVolumeMesh gives Netgen another mesher's tets; quirks there:
+  smoothInteriorPoints gives Netgen another mesher's tets; quirks there:
   Netgen's tets turn the other way (a positive tet is negative to Netgen,
   whose optimiser would take every one for inverted), and every point
   added is an inner point, yet ImproveMesh moves none of a surface
@@ -159,9 +159,9 @@ pmsh::ng::volumeMesh pmsh::ng::surfaceVolumeMesh
 
 // * * * * * * * * * * * Another mesher's tets smoothed  * * * * * * * * * * //
 
-pmsh::ng::volumeMesh pmsh::ng::smoothedVolumeMesh
+void pmsh::ng::smoothInteriorPoints
 (
-    const std::vector<point3>& points,
+    std::vector<point3>& points,
     const std::vector<tetVerts>& tets,
     const std::vector<triVerts>& triangles,
     const meshParameters& parameters,
@@ -185,17 +185,18 @@ pmsh::ng::volumeMesh pmsh::ng::smoothedVolumeMesh
     nglib::Ng_Meshing_Parameters mp;
     mp.maxh = p.maxh;
     mp.grading = p.grading;
-    mp.optsteps_3d = 1;
     try
     {
         mp.Transfer_Parameters();
-        // OptimizeVolume's steps are the letters of optimize3d ("cmdmustm"
-        // by default): "m" is ImproveMesh alone, no flips, no collapses
-        netgen::mparam.optimize3d = "m";
         netgen::Mesh& volume = *reinterpret_cast<netgen::Mesh*>(mesh);
         volume.CalcLocalH(netgen::mparam.grading);
         restrictLocalSizes(volume, p);
-        netgen::OptimizeVolume(netgen::mparam, volume);
+        // What OptimizeVolume does for optimize3d "m" and one step, less
+        // its quality report: ImproveMesh's OPT_QUALITY goal only adds
+        // three sums of every tet's badness for its log (the points move
+        // alike), and MeshQuality3d a histogram of them
+        volume.CalcSurfacesOfNode();
+        volume.ImproveMesh(netgen::mparam, netgen::OPT_REST);
     }
     catch (const std::exception& e)
     {
@@ -203,14 +204,37 @@ pmsh::ng::volumeMesh pmsh::ng::smoothedVolumeMesh
         (
             msg() << "Netgen failed to smooth the volume mesh of " << what << ": "
                 << exceptionText(e) << session.tail(),
-            "pmsh::ng::smoothedVolumeMesh"
+            "pmsh::ng::smoothInteriorPoints"
         );
     }
 
-    volumeMesh m;
-    readNglibMesh(mesh, m, what);
-    makeTetsPositive(m, what);
-    return m;
+    // Netgen keeps the points in order and the tets as they were: only
+    // the points come back
+    const std::vector<point3> before = points;
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+        double xyz[3];
+        nglib::Ng_GetPoint(mesh, int(i) + 1, xyz);
+        points[i] = point3{xyz[0], xyz[1], xyz[2]};
+    }
+
+    // ImproveMesh's badness is infinite on an inverted tet, so it should
+    // invert none; the points of one that it did go back, until none is
+    for (bool reverted = true; reverted; )
+    {
+        reverted = false;
+        for (const tetVerts& t : tets)
+        {
+            if (!(tetVolume6(points[t[0]], points[t[1]], points[t[2]], points[t[3]]) > 0))
+            {
+                for (const label v : t)
+                {
+                    reverted = reverted || points[v] != before[v];
+                    points[v] = before[v];
+                }
+            }
+        }
+    }
 }
 
 // ************************************************************************* //

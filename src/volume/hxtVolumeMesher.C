@@ -61,21 +61,17 @@ pmsh::TetMesh pmsh::hxtVolumeMesher::generate
       ? hxtLibraryMesh(surfacePoints, surfaceTriangles, volumes, parameters)
       : gmshModelMesh(surfacePoints, surfaceTriangles, volumes, parameters);
 
-    // HXT's interior points where Netgen's smoothing puts them: the drag
-    // of a body meshed without layers comes closer to Netgen's meshes'
-    // (bench/results/drag-study.md); at 1.57x the time of the whole run on
-    // the 1M-cell sphere, so only when asked (netgenSmoothingFromSteps)
+    // HXT's interior points where Netgen's smoothing puts them, when asked
+    // (netgenSmoothingFromSteps): meshes the tutorials' schemes converge
+    // on where HXT's own points made simpleFoam blow up, at 1.46x the time
     if (parameters.netgenSmoothing)
     {
         reportMeshingStep("Netgen's smoothing of HXT's interior points");
-        ng::volumeMesh smoothed = ng::smoothedVolumeMesh
+        ng::smoothInteriorPoints
         (
             result.points, result.tets, surfaceTriangles,
             ng::meshParametersOf(parameters), parameters.what
         );
-        result = TetMesh();
-        result.points = std::move(smoothed.points);
-        result.tets = std::move(smoothed.tets);
     }
 
     // HXT's worst cells are far worse than Netgen's: improve them, with
