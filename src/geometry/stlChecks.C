@@ -280,8 +280,9 @@ void findSheetContacts
     {
         return cellKey
         {
-            (long long)std::floor(p[0]/cell), (long long)std::floor(p[1]/cell),
-            (long long)std::floor(p[2]/cell)
+            static_cast<long long>(std::floor(p[0]/cell)),
+            static_cast<long long>(std::floor(p[1]/cell)),
+            static_cast<long long>(std::floor(p[2]/cell))
         };
     };
     constexpr long long maxCells = 512;

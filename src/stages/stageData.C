@@ -84,7 +84,9 @@ pmsh::meshSizes pmsh::meshSizesOf(const tetPolyMesh& mesh)
 {
     // Faces count quads (prism layers) too: a quad is one face of faces;
     // cellZone holds the prisms' zones after the tets'
-    meshSizes sizes{double(mesh.nFaces()), double(mesh.points.size()), {}};
+    meshSizes sizes;
+    sizes.faces = double(mesh.nFaces());
+    sizes.points = double(mesh.points.size());
     for (const meshPatch& p : mesh.patches)
     {
         if (p.isPhysical())
