@@ -166,21 +166,35 @@ class conditionMender
         return worst;
     }
 
-    //- The worst badness of the faces of the tets of `star`, and of their
-    //  flatness (infinite if a tet is not positive): checkMesh's measures
-    //  as the quality pass weighs them. Each is bounded on its own: a
-    //  sliver's faces can be fair while its leastSquares condition is too
-    //  (its neighbours' centres lie all round it), and a move that made
-    //  one stopped HXT's first attempt on OpenFOAM's motorBike (aspect
-    //  ratio 3986); one bound for both let a sliver nearby excuse a face
-    //  of skewness 4.9 (OpenFOAM's building_wtc2)
+    //- The worst badness of the faces of the tets of `star`, each of
+    //  checkMesh's measures on its own (non-orthogonality, skewness),
+    //  and of their flatness (infinite if a tet is not positive), as the
+    //  quality pass weighs them. Each is bounded on its own: a sliver's
+    //  faces can be fair while its leastSquares condition is too (its
+    //  neighbours' centres lie all round it), and a move that made one
+    //  stopped HXT's first attempt on OpenFOAM's motorBike (aspect ratio
+    //  3986); one bound for both let a sliver nearby excuse a face of
+    //  skewness 4.9 (OpenFOAM's building_wtc2); one bound for both face
+    //  measures let a skewed face on a prism top excuse a face of 60
+    //  degrees just above it (a cylinder's 5 layers, its tets smoothed
+    //  by Netgen: 53.7 degrees with the two apart)
     struct badnessOf
     {
-        double faces = 0;
+        double nonOrth = 0;
+        double skew = 0;
         double flatness = 0;
         bool within(const badnessOf& bound) const
         {
-            return faces <= bound.faces && flatness <= bound.flatness;
+            return
+                nonOrth <= bound.nonOrth && skew <= bound.skew
+             && flatness <= bound.flatness;
+        }
+        //- At least `b` each
+        void atLeast(const double b)
+        {
+            nonOrth = std::max(nonOrth, b);
+            skew = std::max(skew, b);
+            flatness = std::max(flatness, b);
         }
     };
 
@@ -195,7 +209,11 @@ class conditionMender
             (
                 worst.flatness, qualityPass::sliverBadness(p[c[0]], p[c[1]], p[c[2]], p[c[3]])
             );
-            if (worst.flatness == qualityPass::infinite) return {qualityPass::infinite, qualityPass::infinite};
+            if (worst.flatness == qualityPass::infinite)
+            {
+                worst.atLeast(qualityPass::infinite);
+                return worst;
+            }
             for (int k = 0; k < 4; ++k)
             {
                 const triVerts f = tetFace(c, k);
@@ -207,7 +225,8 @@ class conditionMender
                     (
                         p[f[0]], p[f[1]], p[f[2]], p[c[3 - k]], p[tetApex(m_.tets[u], f)]
                     );
-                worst.faces = std::max(worst.faces, qualityPass::badness(measured, true));
+                worst.nonOrth = std::max(worst.nonOrth, qualityPass::nonOrthBadness(measured));
+                worst.skew = std::max(worst.skew, qualityPass::badness(measured, false));
             }
         }
         return worst;
@@ -244,8 +263,7 @@ public:
         const pointNeighbourhood n = neighbourhoodOf(v);
         const point3 original = m_.points[v];
         badnessOf bound = worstBadness(n.star);
-        bound.faces = std::max(bound.faces, qualityPass::visitBadness);
-        bound.flatness = std::max(bound.flatness, qualityPass::visitBadness);
+        bound.atLeast(qualityPass::visitBadness);
         move best{worstCondition(n.ring), 0, original};
         best.after = best.before;
         double shortest2 = qualityPass::infinite;
