@@ -15,8 +15,9 @@ its work directory, one after the other on the same machine:
   simpleFoam), on 2 ranks; and the same with the refinement box at the
   tutorial's level 4 (fine cells of 0.0625 instead of 0.125), at the
   resolution of snappyHexMesh's mesh there, with hxt's default
-  optimisationSteps 1 and with 2 (from 2 on, Netgen's smoothing moves
-  HXT's interior points: netgenSmoothingFromSteps).
+  optimisationSteps 1 and with 2 (Netgen's smoothing moves HXT's interior
+  points at both since 2026-12-02, netgenSmoothingFromSteps; the level-4
+  row at one step in results/motorbike.md is from before, HXT's points).
 
 All solve with the same schemes, solvers, models and 500 iterations (the
 tutorial's; pmshFoam's case copies them). For each: cells, meshing wall
