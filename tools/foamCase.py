@@ -110,9 +110,15 @@ def substitute(path, pattern, replacement, count=1):
         f.write(text)
 
 
+def motorbike_box(max_cell_size):
+    """tutorials/motorBike's refinementBox at maxCellSize max_cell_size
+    instead of 0.25 (substitute() in its pmshDict; r = 1 halves it)"""
+    return (r"(refinementBox\s*\{[^}]*maxCellSize\s+)0\.25\b", r"\g<1>%g" % max_cell_size)
+
+
 # tutorials/motorBike's refinementBox at its OpenFOAM tutorial's level 4:
-# fine cells of 0.0625 instead of 0.125 (substitute() in its pmshDict)
-MOTORBIKE_LEVEL4_BOX = (r"(refinementBox\s*\{[^}]*maxCellSize\s+)0\.25\b", r"\g<1>0.125")
+# fine cells of 0.0625 instead of 0.125
+MOTORBIKE_LEVEL4_BOX = motorbike_box(0.125)
 
 
 def mpi(ranks, argv):
