@@ -148,8 +148,10 @@ class layers(CaseTest):
     def test_bodyInBoxStlWithLayersOnTheBodyNp2(self):
         """sphereInBox.stl, 3 layers on the body, 2 ranks: checkMesh Mesh
         OK with prisms, every body face layered (coverage 1 in
-        summary.json and 100 % in the log), first layer as asked, and the
-        estimate after stage 1 with the prisms in it."""
+        summary.json and 100 % in the log), first layer as asked, the
+        estimate after stage 1 with the prisms in it, and summary.json's
+        quality as checkMesh finds it on tets and prisms (their centres
+        about a single-precision apex, meshQuality.C)."""
         helper = bodyInBox(methodName="test_stlNp2")
         helper.cases = self.cases       # its case is kept or removed as ours
         c = helper.body_case("sphereInBox.stl")
@@ -169,6 +171,10 @@ class layers(CaseTest):
         self.assertAlmostEqual(body["firstLayer"][2], 0.01, 9)
         self.assertGreater(s["prisms"], 0)
         self.assertEqual(cells_in_checkmesh_log(text), s["fineCells"])
+        checked, q = read_check_mesh(text), s["quality"]
+        self.assertAlmostEqual(q["maxNonOrthogonality"], checked["maxNonOrtho"], places=4)
+        self.assertAlmostEqual(q["avgNonOrthogonality"], checked["avgNonOrtho"], places=4)
+        self.assertAlmostEqual(q["maxSkewness"], checked["maxSkewness"], places=4)
         # The estimate after stage 1 counts the prisms: every body face
         # layered, it expects them exactly, and the cells within its band
         # (without them it was 0.3 of the cells on the 12-layer pipe)
