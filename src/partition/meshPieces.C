@@ -18,7 +18,7 @@ pmsh::label pmsh::numberOfPieces
 )
 {
     const double pieces = maxPieceCells > 0 ? std::ceil(expectedTets/maxPieceCells) : 0;
-    return pieces <= double(nRanks) ? nRanks : label(pieces);
+    return pieces < 2 || pieces < double(nRanks) ? 0 : label(pieces);
 }
 
 
@@ -32,7 +32,7 @@ pmsh::meshPieces pmsh::partitionIntoPieces
 )
 {
     meshPieces pieces;
-    if (nPieces <= comm.size())
+    if (nPieces == 0)
     {
         pieces.cellPart =
             partitionCoarseMesh(comm, coarse, decompositionDict, fineWeights);

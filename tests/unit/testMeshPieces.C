@@ -100,15 +100,18 @@ struct cubeInPieces
 
 TEST_F(pieces, theNumberOfPiecesDependsOnTheMeshNotOnTheRanks)
 {
-    // 10.5 pieces' worth of cells: 11 pieces on 1, 2, 4 and 8 ranks
-    for (label ranks : {1, 2, 4, 8})
+    // 10.5 pieces' worth of cells: 11 pieces on 1, 2, 4, 8 and 11 ranks
+    // (a piece a rank is still the same 11 pieces)
+    for (label ranks : {1, 2, 4, 8, 11})
     {
         EXPECT_EQ(numberOfPieces(10.5e6, ranks, 1e6), 11) << ranks << " ranks";
     }
-    // Less than a piece's worth a rank: one piece a rank, as without pieces
-    EXPECT_EQ(numberOfPieces(10.5e6, 16, 1e6), 16);
-    EXPECT_EQ(numberOfPieces(0.5e6, 2, 1e6), 2);
-    EXPECT_EQ(numberOfPieces(0.5e6, 1, 1e6), 1);
+    // Less than a piece's worth a rank, or one piece: 0, one piece a rank
+    // split by the case's own method, as without pieces
+    EXPECT_EQ(numberOfPieces(10.5e6, 16, 1e6), 0);
+    EXPECT_EQ(numberOfPieces(0.5e6, 2, 1e6), 0);
+    EXPECT_EQ(numberOfPieces(0.5e6, 1, 1e6), 0);
+    EXPECT_EQ(numberOfPieces(1.5e6, 2, 1e6), 2);
 }
 
 
