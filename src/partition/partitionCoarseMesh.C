@@ -328,7 +328,79 @@ std::vector<pmsh::label> pmsh::groupPieces
         --nOf[from];
         ++nOf[empty];
     }
+    const label moved = balancePieceGroups(pieceWeight, adjacent, nParts, pieceRank);
+    if (moved > 0)
+    {
+        Info<< "    " << moved << " piece(s) moved between parts to balance them\n";
+    }
     return pieceRank;
+}
+
+
+pmsh::label pmsh::balancePieceGroups
+(
+    const std::vector<double>& pieceWeight,
+    const std::vector<std::vector<label>>& adjacent,
+    label nParts,
+    std::vector<label>& pieceRank
+)
+{
+    const label nPieces = label(pieceRank.size());
+    std::vector<double> partWeight(nParts, 0);
+    std::vector<label> nOf(nParts, 0);
+    for (label p = 0; p < nPieces; ++p)
+    {
+        partWeight[pieceRank[p]] += pieceWeight[p];
+        ++nOf[pieceRank[p]];
+    }
+    label moved = 0;
+    // Each move lowers the heaviest part or the number of parts that
+    // heavy: nPieces*nParts moves bound it well above what it takes
+    for (label step = 0; step < nPieces*nParts; ++step)
+    {
+        const label heaviest =
+            label(std::max_element(partWeight.begin(), partWeight.end()) - partWeight.begin());
+        if (nOf[heaviest] < 2)
+        {
+            break;
+        }
+        label bestPiece = -1, bestPart = -1;
+        double bestMax = partWeight[heaviest];
+        for (label p = 0; p < nPieces; ++p)
+        {
+            if (pieceRank[p] != heaviest) continue;
+            for (const label n : adjacent[p])
+            {
+                const label q = pieceRank[n];
+                if (q == heaviest) continue;
+                const double after = std::max
+                (
+                    partWeight[heaviest] - pieceWeight[p], partWeight[q] + pieceWeight[p]
+                );
+                if
+                (
+                    after < bestMax
+                 || (after == bestMax && bestPiece == p && q < bestPart)
+                )
+                {
+                    bestMax = after;
+                    bestPiece = p;
+                    bestPart = q;
+                }
+            }
+        }
+        if (bestPiece < 0)
+        {
+            break;
+        }
+        partWeight[heaviest] -= pieceWeight[bestPiece];
+        partWeight[bestPart] += pieceWeight[bestPiece];
+        --nOf[heaviest];
+        ++nOf[bestPart];
+        pieceRank[bestPiece] = bestPart;
+        ++moved;
+    }
+    return moved;
 }
 
 

@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -135,6 +136,38 @@ TEST_F(pieces, everyRankGetsAPieceAndEveryPieceOneRank)
             EXPECT_GT(piecesOf[r], 0) << nPieces << " pieces on " << nParts << " ranks: rank " << r;
         }
     }
+}
+
+
+TEST_F(pieces, aPoorGroupingIsBalancedByMovingPiecesToNeighbouringParts)
+{
+    // Four even pieces in a ring, grouped 1 + 3 (as metis grouped a
+    // layered bullet's): one piece moves, 2 + 2
+    const std::vector<double> weight{1, 1, 1, 1};
+    const std::vector<std::vector<label>> ring{{1, 3}, {0, 2}, {1, 3}, {0, 2}};
+    std::vector<label> rank{0, 1, 1, 1};
+    EXPECT_EQ(balancePieceGroups(weight, ring, 2, rank), 1);
+    EXPECT_EQ(std::count(rank.begin(), rank.end(), 0), 2);
+
+    // A move that would make the other part the heavier is not made:
+    // 2 + 2 against 3 stays, as 2 against 2 + 3 would be worse
+    const std::vector<std::vector<label>> all{{1, 2}, {0, 2}, {0, 1}};
+    std::vector<label> uneven{0, 0, 1};
+    EXPECT_EQ(balancePieceGroups({2, 2, 3}, all, 2, uneven), 0);
+    EXPECT_EQ(uneven, (std::vector<label>{0, 0, 1}));
+
+    // Pieces move only to a part holding a neighbour: a chain 0-1-2-3
+    // grouped {0, 1, 2} and {3} gives 2 to part 1, not 0 or 1
+    const std::vector<std::vector<label>> chain{{1}, {0, 2}, {1, 3}, {2}};
+    std::vector<label> grouped{0, 0, 0, 1};
+    EXPECT_EQ(balancePieceGroups(weight, chain, 2, grouped), 1);
+    EXPECT_EQ(grouped, (std::vector<label>{0, 0, 1, 1}));
+
+    // A part keeps one piece at least, and balanced groups stay as they are
+    std::vector<label> one{0, 1};
+    EXPECT_EQ(balancePieceGroups({5, 1}, {{1}, {0}}, 2, one), 0);
+    std::vector<label> even{0, 0, 1, 1};
+    EXPECT_EQ(balancePieceGroups(weight, ring, 2, even), 0);
 }
 
 
